@@ -1,0 +1,190 @@
+// ctmap: the command-line front end. Only argument parsing and printing live here; every
+// capability is a library function (DESIGN §2).
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "ctmap/errors.h"
+#include "ctmap/io/atomic_file.h"
+#include "ctmap/io/data_path.h"
+#include "ctmap/io/features.h"
+#include "ctmap/io/glb_io.h"
+#include "ctmap/io/image.h"
+#include "ctmap/io/mesh_topology.h"
+#include "ctmap/io/obj_io.h"
+#include "ctmap/io/read_mesh.h"
+
+namespace {
+
+using namespace ctmap;
+namespace fs = std::filesystem;
+
+std::string lower_ext(const std::string& p) {
+    std::string e = fs::path(p).extension().string();
+    for (char& c : e) c = char(std::tolower((unsigned char)c));
+    return e;
+}
+
+int cmd_info(const std::string& mesh_path, bool as_json) {
+    const TriMesh mesh = read_mesh(mesh_path);
+    const MeshTopology t = compute_topology(mesh);
+    if (as_json) {
+        std::cout << topology_to_json(t) << "\n";
+        return kExitOk;
+    }
+    std::cout << mesh_path << "\n"
+              << "  vertices " << t.vertices << ", faces " << t.faces << ", edges " << t.edges << "\n"
+              << "  components " << t.components << ", border loops " << t.border_loops << " (" << t.border_edges
+              << " border edges), Euler characteristic " << t.euler << "\n"
+              << "  non-manifold vertices " << t.non_manifold_vertices << ", non-manifold edges "
+              << t.non_manifold_edges << ", inconsistently oriented edges " << t.inconsistent_edges << "\n"
+              << "  degenerate faces " << t.degenerate_faces << ", duplicated vertices " << t.duplicated_vertices
+              << ", isolated vertices " << t.isolated_vertices << "\n"
+              << "  " << (t.is_disc ? "a topological disc: ready for `ctmap map`"
+                          : t.is_closed ? "closed (no border): needs a seam before it can be mapped"
+                                        : "not a disc: `ctmap map` needs one border loop and no handles")
+              << "\n";
+    return kExitOk;
+}
+
+/// The image size for a features set: the --image argument, else the file's `image`, else its
+/// `image_size` (issue 4's rule, used here so `validate` checks what `map` will use).
+std::string resolve_image(FeatureSet& fs, const std::string& image_arg, int& w, int& h) {
+    std::string image = !image_arg.empty() ? image_arg : fs.image;
+    if (!image.empty()) {
+        const Image img = read_image(image);
+        w = img.width;
+        h = img.height;
+        if (fs.image_size && ((*fs.image_size)[0] != w || (*fs.image_size)[1] != h))
+            throw BadInput(fs.path, "\"image_size\" [" + std::to_string((*fs.image_size)[0]) + ", " +
+                                        std::to_string((*fs.image_size)[1]) + "] differs from the size of " + image +
+                                        " (" + std::to_string(w) + " x " + std::to_string(h) + ")");
+    } else if (fs.image_size) {
+        w = (*fs.image_size)[0];
+        h = (*fs.image_size)[1];
+    } else {
+        throw BadInput(fs.path, "no image: give --image, or \"image\" or \"image_size\" in the features file");
+    }
+    resolve_units(fs, w, h);
+    return image;
+}
+
+int cmd_validate(const std::string& mesh_path, const std::string& features_path, const std::string& image_arg) {
+    const TriMesh mesh = read_mesh(mesh_path);
+    const MeshTopology t = compute_topology(mesh);
+    require_disc(t, mesh_path);
+    FeatureSet fs = read_features(features_path);
+    int w = 0, h = 0;
+    const std::string image = resolve_image(fs, image_arg, w, h);
+    check_features_on_mesh(fs, mesh, mesh_path);
+    std::cout << "ok: " << mesh_path << " is a disc (" << t.vertices << " vertices, " << t.faces << " faces); "
+              << fs.features.size() << " features in " << features_path << " on a " << w << " x " << h << " image"
+              << (image.empty() ? "" : " (" + image + ")") << "\n";
+    return kExitOk;
+}
+
+int cmd_convert(const std::string& mesh_path, const std::string& out_path) {
+    const TriMesh mesh = read_mesh(mesh_path);
+    TexturedMesh tm;
+    tm.mesh = mesh;
+    tm.chart.assign(mesh.faces.size(), 0);
+    const std::string ext = lower_ext(out_path);
+    if (ext == ".obj") write_obj(tm, out_path);
+    else if (ext == ".glb") write_glb(tm, out_path);
+    else throw BadInput(out_path, "unknown output format '" + ext + "' (use .obj or .glb)");
+    std::cout << "wrote " << out_path << " (" << mesh.num_vertices() << " vertices, " << mesh.num_faces()
+              << " faces)\n";
+    return kExitOk;
+}
+
+/// The shipped example: nefertiti.off with the project's features on astronaut.png.
+/// Until `ctmap map` lands (issue 4) the demo checks the example inputs and writes the mesh and
+/// its topology report; the map itself is added to it by that issue.
+int cmd_demo(const std::string& out_dir) {
+    const std::string mesh_path = find_data_file("meshes/nefertiti.off");
+    const std::string features_path = find_data_file("features/nefertiti_astronaut.json");
+    const std::string image_path = find_data_file("images/astronaut.png");
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);
+    if (ec) throw BadInput(out_dir, "cannot create the output folder (" + ec.message() + ")");
+    std::cout << "demo: " << mesh_path << "\n      " << features_path << "\n      " << image_path << "\n";
+    cmd_validate(mesh_path, features_path, image_path);
+    const TriMesh mesh = read_mesh(mesh_path);
+    OutputSet outputs;
+    TexturedMesh tm;
+    tm.mesh = mesh;
+    tm.chart.assign(mesh.faces.size(), 0);
+    write_glb(tm, (fs::path(out_dir) / "nefertiti.glb").string(), "", outputs);
+    const std::string info_tmp = outputs.add((fs::path(out_dir) / "nefertiti_info.json").string());
+    {
+        std::ofstream os(info_tmp);
+        os << topology_to_json(compute_topology(mesh)) << "\n";
+    }
+    outputs.commit_all();
+    std::cout << "demo: wrote " << out_dir << "/nefertiti.glb and nefertiti_info.json\n";
+    return kExitOk;
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{
+        "ctmap: constrained texture mapping (Guo, Wang, Cui, Peng).\n"
+        "Puts every feature of a 3D disc mesh exactly on its point in a photograph, with no flipped\n"
+        "triangle. Exit codes: 0 ok, 1 invalid map (check), 2 bad input, 3 internal failure.",
+        "ctmap"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "ctmap 0.1.0");
+
+    std::string mesh_path, features_path, image_arg, out_path;
+    bool as_json = false;
+
+    auto* info = app.add_subcommand("info", "Print the topology of a mesh (OFF, OBJ, PLY, STL)");
+    info->add_option("MESH", mesh_path, "mesh file")->required();
+    info->add_flag("--json", as_json, "print JSON (keys: vertices, faces, components, border_loops, euler, ...)");
+
+    auto* validate = app.add_subcommand("validate", "Check a mesh, a features file and an image before mapping");
+    validate->add_option("MESH", mesh_path, "mesh file (a topological disc)")->required();
+    validate->add_option("FEATURES", features_path, "features.json (DESIGN §4)")->required();
+    validate->add_option("--image", image_arg, "texture image (PNG/JPEG); overrides the features file's \"image\"");
+
+    auto* convert = app.add_subcommand("convert", "Convert a mesh to OBJ or binary glTF (.glb)");
+    convert->add_option("MESH", mesh_path, "input mesh file")->required();
+    convert->add_option("-o,--output", out_path, "output file, .obj or .glb")->required();
+
+    std::string demo_out = "ctmap-demo";
+    auto* demo = app.add_subcommand("demo", "Run ctmap on the shipped example (nefertiti + astronaut)");
+    demo->add_option("--out", demo_out, "output folder")->capture_default_str();
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? kExitOk : kExitBadInput;
+    }
+    if (*info) return cmd_info(mesh_path, as_json);
+    if (*validate) return cmd_validate(mesh_path, features_path, image_arg);
+    if (*convert) return cmd_convert(mesh_path, out_path);
+    if (*demo) return cmd_demo(demo_out);
+    return kExitBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const ctmap::BadInput& e) {
+        std::cerr << "ctmap: error: " << e.what() << "\n";
+        return ctmap::kExitBadInput;
+    } catch (const ctmap::InternalError& e) {
+        std::cerr << "ctmap: internal failure: " << e.what() << "\n";
+        return ctmap::kExitInternal;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "ctmap: internal failure: out of memory\n";
+        return ctmap::kExitInternal;
+    } catch (const std::exception& e) {
+        std::cerr << "ctmap: internal failure: " << e.what() << "\n";
+        return ctmap::kExitInternal;
+    }
+}

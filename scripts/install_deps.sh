@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs ctmap's build and test dependencies from Debian's packages (DESIGN §5).
+# Does nothing when they are all present, so the test command can call it cheaply.
+set -euo pipefail
+packages=(
+  cmake ninja-build g++ pkg-config
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev libstb-dev libtinygltf-dev
+  libgtest-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "dependencies: all ${#packages[@]} Debian packages present"
+  exit 0
+fi
+echo "dependencies: installing ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The test command: builds and runs the whole GoogleTest suite (CTest), then the bad-input suite
+# again under AddressSanitizer and UndefinedBehaviorSanitizer. Long benchmarks are not run here
+# (bench/run does that).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install_deps.sh
+bash scripts/fetch_data.sh
+bash scripts/build.sh build
+(cd build && ctest --output-on-failure -j2 --timeout 1200)
+echo "== bad-input suite under AddressSanitizer + UndefinedBehaviorSanitizer"
+bash scripts/build.sh build-asan -DCTMAP_SANITIZE=ON -DCTMAP_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+(cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ctest --output-on-failure -j2 -R 'BadInput|RoundTrip' --timeout 1200)

@@ -1,0 +1,64 @@
+#include "ctmap/io/atomic_file.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+
+#include "ctmap/errors.h"
+
+namespace ctmap {
+
+AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
+    static std::atomic<int> counter{0};
+    namespace fs = std::filesystem;
+    const fs::path t(target_);
+    if (t.filename().empty()) throw BadInput(target_, "an output path must name a file");
+    const fs::path dir = t.has_parent_path() ? t.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw BadInput(target_, "the output folder '" + dir.string() + "' does not exist");
+    temp_ = (dir / ("." + t.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
+                    std::to_string(counter++)))
+                .string();
+}
+
+AtomicFile::AtomicFile(AtomicFile&& o) noexcept
+    : target_(std::move(o.target_)), temp_(std::move(o.temp_)), committed_(o.committed_) {
+    o.committed_ = true;  // the moved-from object owns nothing
+}
+
+AtomicFile::~AtomicFile() {
+    if (!committed_) {
+        std::error_code ec;
+        std::filesystem::remove(temp_, ec);
+    }
+}
+
+void AtomicFile::commit() {
+    std::error_code ec;
+    std::filesystem::rename(temp_, target_, ec);
+    if (ec) throw InternalError(target_ + ": could not write the output (" + ec.message() + ")");
+    committed_ = true;
+}
+
+std::string OutputSet::add(const std::string& target) {
+    files_.emplace_back(target);
+    return files_.back().temp_path();
+}
+
+void OutputSet::commit_all() {
+    for (AtomicFile& f : files_) f.commit();
+}
+
+void write_text_file(const std::string& path, const std::string& content) {
+    AtomicFile out(path);
+    {
+        std::ofstream os(out.temp_path(), std::ios::binary);
+        os << content;
+        if (!os.flush()) throw InternalError(path + ": could not write the file");
+    }
+    out.commit();
+}
+
+}  // namespace ctmap

@@ -1,0 +1,245 @@
+#include "ctmap/io/features.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "ctmap/errors.h"
+
+namespace ctmap {
+namespace {
+
+using json = nlohmann::json;
+
+class Problems {
+public:
+    void add(std::string p) { list_.push_back(std::move(p)); }
+    bool empty() const { return list_.empty(); }
+    void throw_if_any(const std::string& file, const std::string& intro) const {
+        if (list_.empty()) return;
+        std::string msg = intro;
+        for (const auto& p : list_) msg += "\n  - " + p;
+        throw BadInput(file, msg);
+    }
+
+private:
+    std::vector<std::string> list_;
+};
+
+std::string named(const std::string& s) { return "'" + s + "'"; }
+
+bool read_number_array(const json& j, std::size_t n, double* out) {
+    if (!j.is_array() || j.size() != n) return false;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!j[i].is_number()) return false;
+        out[i] = j[i].get<double>();
+    }
+    return true;
+}
+
+bool all_finite(const double* v, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+
+std::string fmt(const Vec2& p) {
+    std::ostringstream os;
+    os << "(" << p.x() << ", " << p.y() << ")";
+    return os.str();
+}
+
+}  // namespace
+
+FeatureSet read_features(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw BadInput(path, "no such features file");
+    if (fs::is_directory(path, ec)) throw BadInput(path, "is a directory, not a features file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw BadInput(path, "cannot be opened for reading");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return parse_features(ss.str(), path);
+}
+
+FeatureSet parse_features(const std::string& text, const std::string& path) {
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw BadInput(path, "the features file is empty");
+    json doc;
+    try {
+        doc = json::parse(text);
+    } catch (const json::parse_error& e) {
+        throw BadInput(path, std::string("not valid JSON: ") + e.what());
+    }
+    if (!doc.is_object()) throw BadInput(path, "the features file must hold a JSON object with a \"features\" array");
+
+    FeatureSet out;
+    out.path = path;
+    Problems problems;
+
+    if (doc.contains("units")) {
+        if (!doc["units"].is_string() || (doc["units"] != "pixels" && doc["units"] != "uv"))
+            problems.add("wrong units " + doc["units"].dump() + ": use \"pixels\" or \"uv\"");
+        else
+            out.units = doc["units"].get<std::string>();
+    }
+    if (doc.contains("image")) {
+        if (!doc["image"].is_string() || doc["image"].get<std::string>().empty())
+            problems.add("\"image\" must be a non-empty file name (relative to the features file)");
+        else {
+            std::filesystem::path p(doc["image"].get<std::string>());
+            if (p.is_relative()) p = std::filesystem::path(path).parent_path() / p;
+            out.image = p.lexically_normal().string();
+        }
+    }
+    if (doc.contains("image_size")) {
+        const json& s = doc["image_size"];
+        if (!s.is_array() || s.size() != 2 || !s[0].is_number_integer() || !s[1].is_number_integer() ||
+            s[0].get<long long>() <= 0 || s[1].get<long long>() <= 0 || s[0].get<long long>() > 1000000 ||
+            s[1].get<long long>() > 1000000)
+            problems.add("\"image_size\" must be [W, H] with positive integer width and height");
+        else
+            out.image_size = std::array<int, 2>{s[0].get<int>(), s[1].get<int>()};
+    }
+
+    if (!doc.contains("features")) problems.add("missing field \"features\" (an array of features)");
+    else if (!doc["features"].is_array()) problems.add("\"features\" must be an array");
+    else if (doc["features"].empty()) problems.add("\"features\" is empty: at least 3 features are needed");
+
+    if (doc.contains("features") && doc["features"].is_array()) {
+        int index = 0;
+        for (const json& f : doc["features"]) {
+            const std::string label = "feature #" + std::to_string(index++);
+            if (!f.is_object()) {
+                problems.add(label + " is not an object");
+                continue;
+            }
+            Feature feat;
+            if (!f.contains("name")) problems.add(label + ": missing field \"name\"");
+            else if (!f["name"].is_string() || f["name"].get<std::string>().empty())
+                problems.add(label + ": \"name\" must be a non-empty string");
+            else
+                feat.name = f["name"].get<std::string>();
+            const std::string who = feat.name.empty() ? label : "feature " + named(feat.name);
+
+            const bool has_vertex = f.contains("vertex"), has_point = f.contains("point");
+            if (has_vertex == has_point)
+                problems.add(who + ": give exactly one of \"vertex\" (a mesh vertex index) or \"point\" (a 3D point)");
+            else if (has_vertex) {
+                const json& v = f["vertex"];
+                if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() > 2000000000LL)
+                    problems.add(who + ": \"vertex\" must be a non-negative integer index, got " + v.dump());
+                else
+                    feat.vertex = v.get<int>();
+            } else {
+                double p[3];
+                if (!read_number_array(f["point"], 3, p)) problems.add(who + ": \"point\" must be [x, y, z]");
+                else if (!all_finite(p, 3)) problems.add(who + ": \"point\" has a non-finite coordinate (NaN or infinity)");
+                else feat.point = Vec3(p[0], p[1], p[2]);
+            }
+
+            double q[2];
+            if (!f.contains("image")) problems.add(who + ": missing field \"image\" ([x, y] in " + out.units + ")");
+            else if (!read_number_array(f["image"], 2, q)) problems.add(who + ": \"image\" must be [x, y]");
+            else if (!all_finite(q, 2)) problems.add(who + ": \"image\" has a non-finite coordinate (NaN or infinity)");
+            else feat.image = Vec2(q[0], q[1]);
+            out.features.push_back(std::move(feat));
+        }
+    }
+    problems.throw_if_any(path, "the features file is invalid:");
+
+    // Uniqueness rules (DESIGN §4), each naming every feature involved.
+    std::map<std::string, int> names;
+    std::map<int, std::string> vertices;
+    std::map<std::pair<double, double>, std::string> points;
+    std::map<std::array<double, 3>, std::string> surface_points;
+    for (const Feature& f : out.features) {
+        if (++names[f.name] == 2) problems.add("the name " + named(f.name) + " is used by more than one feature");
+        if (f.vertex >= 0) {
+            auto [it, fresh] = vertices.emplace(f.vertex, f.name);
+            if (!fresh)
+                problems.add("features " + named(it->second) + " and " + named(f.name) + " both use vertex " +
+                             std::to_string(f.vertex));
+        } else if (f.point) {
+            auto [it, fresh] = surface_points.emplace(std::array<double, 3>{f.point->x(), f.point->y(), f.point->z()}, f.name);
+            if (!fresh)
+                problems.add("features " + named(it->second) + " and " + named(f.name) + " are the same 3D point");
+        }
+        auto [it, fresh] = points.emplace(std::make_pair(f.image.x(), f.image.y()), f.name);
+        if (!fresh)
+            problems.add("features " + named(it->second) + " and " + named(f.name) + " have the same image point " +
+                         fmt(f.image));
+    }
+    if (out.features.size() < 3)
+        problems.add("only " + std::to_string(out.features.size()) + " feature(s): at least 3 are needed");
+    if (out.units == "uv")
+        for (const Feature& f : out.features)
+            if (f.image.x() < 0 || f.image.x() > 1 || f.image.y() < 0 || f.image.y() > 1)
+                problems.add("feature " + named(f.name) + ": UV " + fmt(f.image) + " is outside [0, 1] x [0, 1]");
+    problems.throw_if_any(path, "the features file is invalid:");
+    return out;
+}
+
+void resolve_units(FeatureSet& fs, int width, int height) {
+    Problems problems;
+    if (fs.units == "uv") {
+        for (Feature& f : fs.features) f.image = Vec2(f.image.x() * width, (1.0 - f.image.y()) * height);
+        fs.units = "pixels";
+    }
+    for (const Feature& f : fs.features)
+        if (!(f.image.x() >= 0 && f.image.x() <= width && f.image.y() >= 0 && f.image.y() <= height))
+            problems.add("feature " + named(f.name) + ": image point " + fmt(f.image) + " is outside the " +
+                         std::to_string(width) + " x " + std::to_string(height) + " image");
+    problems.throw_if_any(fs.path, "features outside the image:");
+}
+
+void check_features_on_mesh(const FeatureSet& fs, const TriMesh& mesh, const std::string& mesh_file) {
+    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+    Problems problems;
+    Eigen::AlignedBox3d box;
+    for (const Vec3& p : mesh.positions) box.extend(p);
+    const double tol = 1e-6 * box.diagonal().norm();
+    for (const Feature& f : fs.features) {
+        if (f.vertex >= mesh.num_vertices())
+            problems.add("feature " + named(f.name) + " uses vertex " + std::to_string(f.vertex) + ", but " +
+                         mesh_file + " has only " + std::to_string(mesh.num_vertices()) + " vertices");
+        if (!f.point) continue;
+        const K::Point_3 q(f.point->x(), f.point->y(), f.point->z());
+        double best = std::numeric_limits<double>::infinity();
+        for (const Tri& t : mesh.faces) {
+            auto P = [&](int i) { return K::Point_3(mesh.positions[i].x(), mesh.positions[i].y(), mesh.positions[i].z()); };
+            const K::Triangle_3 tri(P(t[0]), P(t[1]), P(t[2]));
+            if (tri.is_degenerate()) continue;
+            best = std::min(best, CGAL::to_double(CGAL::squared_distance(q, tri)));
+        }
+        if (!(std::sqrt(best) <= tol))
+            problems.add("feature " + named(f.name) + ": its 3D point is " + std::to_string(std::sqrt(best)) +
+                         " away from the surface of " + mesh_file + " (tolerance " + std::to_string(tol) + ")");
+    }
+    problems.throw_if_any(fs.path, "the features do not match the mesh:");
+}
+
+std::string features_to_json(const FeatureSet& fs) {
+    nlohmann::ordered_json j;
+    if (!fs.image.empty()) j["image"] = fs.image;
+    if (fs.image_size) j["image_size"] = {(*fs.image_size)[0], (*fs.image_size)[1]};
+    j["units"] = fs.units;
+    j["features"] = nlohmann::ordered_json::array();
+    for (const Feature& f : fs.features) {
+        nlohmann::ordered_json e;
+        e["name"] = f.name;
+        if (f.vertex >= 0) e["vertex"] = f.vertex;
+        else if (f.point) e["point"] = {f.point->x(), f.point->y(), f.point->z()};
+        e["image"] = {f.image.x(), f.image.y()};
+        j["features"].push_back(e);
+    }
+    return j.dump(2);
+}
+
+}  // namespace ctmap

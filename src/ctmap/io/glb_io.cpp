@@ -1,0 +1,201 @@
+#include "ctmap/io/glb_io.h"
+
+#include <tiny_gltf.h>
+
+#include <Eigen/Geometry>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+
+#include "ctmap/errors.h"
+
+namespace ctmap {
+namespace {
+
+template <class T>
+int append(std::vector<unsigned char>& buf, const std::vector<T>& data) {
+    while (buf.size() % 4) buf.push_back(0);  // accessors must be aligned to their component size
+    const int offset = int(buf.size());
+    const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+    buf.insert(buf.end(), bytes, bytes + data.size() * sizeof(T));
+    return offset;
+}
+
+int add_view(tinygltf::Model& m, int offset, std::size_t length, int target) {
+    tinygltf::BufferView v;
+    v.buffer = 0;
+    v.byteOffset = std::size_t(offset);
+    v.byteLength = length;
+    v.target = target;
+    m.bufferViews.push_back(v);
+    return int(m.bufferViews.size()) - 1;
+}
+
+std::string mime_of(const std::string& path, const std::vector<unsigned char>& bytes) {
+    if (bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG", 4) == 0) return "image/png";
+    if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return "image/jpeg";
+    throw BadInput(path, "the texture for a glTF file must be a PNG or JPEG");
+}
+
+}  // namespace
+
+void write_glb(const TexturedMesh& tm, const std::string& path, const std::string& image, OutputSet& outputs) {
+    const bool has_uv = !tm.uvs.empty();
+    // One glTF vertex per distinct (position, uv) pair.
+    std::map<std::pair<int, int>, std::uint32_t> vertex_of;
+    std::vector<float> pos, uv;
+    std::vector<std::uint32_t> idx;
+    idx.reserve(tm.mesh.faces.size() * 3);
+    Eigen::AlignedBox3f box;
+    for (std::size_t f = 0; f < tm.mesh.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int v = tm.mesh.faces[f][k];
+            const int t = has_uv ? tm.uv_faces[f][k] : -1;
+            auto [it, fresh] = vertex_of.emplace(std::make_pair(v, t), std::uint32_t(pos.size() / 3));
+            if (fresh) {
+                const Eigen::Vector3f p = tm.mesh.positions[v].cast<float>();
+                pos.insert(pos.end(), {p.x(), p.y(), p.z()});
+                box.extend(p);
+                if (has_uv) uv.insert(uv.end(), {float(tm.uvs[t].x()), float(1.0 - tm.uvs[t].y())});
+            }
+            idx.push_back(it->second);
+        }
+
+    tinygltf::Model m;
+    m.asset.version = "2.0";
+    m.asset.generator = "ctmap";
+    m.buffers.emplace_back();
+    auto& buf = m.buffers[0].data;
+
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    auto add_accessor = [&](int view, int ctype, std::size_t count, int type) {
+        tinygltf::Accessor a;
+        a.bufferView = view;
+        a.componentType = ctype;
+        a.count = count;
+        a.type = type;
+        m.accessors.push_back(a);
+        return int(m.accessors.size()) - 1;
+    };
+    const int pos_acc = add_accessor(add_view(m, append(buf, pos), pos.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                     TINYGLTF_COMPONENT_TYPE_FLOAT, pos.size() / 3, TINYGLTF_TYPE_VEC3);
+    m.accessors[pos_acc].minValues = {double(box.min().x()), double(box.min().y()), double(box.min().z())};
+    m.accessors[pos_acc].maxValues = {double(box.max().x()), double(box.max().y()), double(box.max().z())};
+    prim.attributes["POSITION"] = pos_acc;
+    if (has_uv)
+        prim.attributes["TEXCOORD_0"] =
+            add_accessor(add_view(m, append(buf, uv), uv.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                         TINYGLTF_COMPONENT_TYPE_FLOAT, uv.size() / 2, TINYGLTF_TYPE_VEC2);
+    prim.indices = add_accessor(add_view(m, append(buf, idx), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, idx.size(), TINYGLTF_TYPE_SCALAR);
+
+    tinygltf::Material mat;
+    mat.name = "ctmap_texture";
+    mat.pbrMetallicRoughness.metallicFactor = 0.0;
+    mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+    mat.doubleSided = true;
+    if (!image.empty() && has_uv) {
+        std::ifstream in(image, std::ios::binary);
+        if (!in) throw BadInput(image, "cannot read the texture image");
+        std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        tinygltf::Image img;
+        img.mimeType = mime_of(image, bytes);
+        img.name = std::filesystem::path(image).stem().string();
+        img.bufferView = add_view(m, append(buf, bytes), bytes.size(), 0);
+        m.images.push_back(img);
+        tinygltf::Sampler s;
+        s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+        s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+        s.wrapS = s.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+        m.samplers.push_back(s);
+        tinygltf::Texture tex;
+        tex.source = 0;
+        tex.sampler = 0;
+        m.textures.push_back(tex);
+        mat.pbrMetallicRoughness.baseColorTexture.index = 0;
+    }
+    m.materials.push_back(mat);
+    prim.material = 0;
+
+    tinygltf::Mesh mesh;
+    mesh.name = "ctmap";
+    mesh.primitives.push_back(prim);
+    m.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.mesh = 0;
+    m.nodes.push_back(node);
+    tinygltf::Scene scene;
+    scene.nodes.push_back(0);
+    m.scenes.push_back(scene);
+    m.defaultScene = 0;
+
+    const std::string tmp = outputs.add(path);
+    std::ofstream os(tmp, std::ios::binary);
+    tinygltf::TinyGLTF gltf;
+    if (!gltf.WriteGltfSceneToStream(&m, os, false, true) || !os.flush())
+        throw InternalError(path + ": could not write the glTF file");
+}
+
+void write_glb(const TexturedMesh& mesh, const std::string& path, const std::string& image) {
+    OutputSet outputs;
+    write_glb(mesh, path, image, outputs);
+    outputs.commit_all();
+}
+
+namespace {
+
+template <class T>
+std::vector<T> read_accessor(const tinygltf::Model& m, int index, int ctype, int type, const std::string& path) {
+    if (index < 0 || index >= int(m.accessors.size())) throw BadInput(path, "missing accessor");
+    const tinygltf::Accessor& a = m.accessors[index];
+    if (a.componentType != ctype || a.type != type || a.bufferView < 0)
+        throw BadInput(path, "unsupported accessor layout (ctmap reads what it writes: float positions/UVs, uint32 indices)");
+    const tinygltf::BufferView& v = m.bufferViews[a.bufferView];
+    const int n = tinygltf::GetNumComponentsInType(type);
+    const std::size_t stride = v.byteStride ? v.byteStride : n * sizeof(T);
+    const auto& data = m.buffers[v.buffer].data;
+    std::vector<T> out(a.count * n);
+    for (std::size_t i = 0; i < a.count; ++i) {
+        const std::size_t at = v.byteOffset + a.byteOffset + i * stride;
+        if (at + n * sizeof(T) > data.size()) throw BadInput(path, "accessor runs past its buffer");
+        std::memcpy(&out[i * n], data.data() + at, n * sizeof(T));
+    }
+    return out;
+}
+
+}  // namespace
+
+TexturedMesh read_glb(const std::string& path) {
+    tinygltf::Model m;
+    tinygltf::TinyGLTF gltf;
+    std::string err, warn;
+    const bool ok = path.size() > 4 && path.substr(path.size() - 4) == ".glb"
+                        ? gltf.LoadBinaryFromFile(&m, &err, &warn, path)
+                        : gltf.LoadASCIIFromFile(&m, &err, &warn, path);
+    if (!ok) throw BadInput(path, "not a readable glTF file: " + err);
+    if (m.meshes.empty() || m.meshes[0].primitives.empty()) throw BadInput(path, "no mesh in the glTF file");
+    const tinygltf::Primitive& p = m.meshes[0].primitives[0];
+    if (!p.attributes.count("POSITION")) throw BadInput(path, "the primitive has no POSITION");
+    const auto pos = read_accessor<float>(m, p.attributes.at("POSITION"), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, path);
+    const auto idx = read_accessor<std::uint32_t>(m, p.indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, path);
+    TexturedMesh tm;
+    for (std::size_t i = 0; i < pos.size(); i += 3) tm.mesh.positions.emplace_back(pos[i], pos[i + 1], pos[i + 2]);
+    for (std::size_t i = 0; i + 2 < idx.size(); i += 3) {
+        Tri t{int(idx[i]), int(idx[i + 1]), int(idx[i + 2])};
+        for (int v : t)
+            if (v >= tm.mesh.num_vertices()) throw BadInput(path, "index out of range");
+        tm.mesh.faces.push_back(t);
+    }
+    if (p.attributes.count("TEXCOORD_0")) {
+        const auto uv = read_accessor<float>(m, p.attributes.at("TEXCOORD_0"), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, path);
+        for (std::size_t i = 0; i < uv.size(); i += 2) tm.uvs.emplace_back(uv[i], 1.0 - double(uv[i + 1]));
+        tm.uv_faces = tm.mesh.faces;
+    }
+    tm.chart.assign(tm.mesh.faces.size(), 0);
+    return tm;
+}
+
+}  // namespace ctmap

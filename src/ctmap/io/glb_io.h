@@ -1,0 +1,27 @@
+#pragma once
+/// \file glb_io.h
+/// Binary glTF output (tinygltf) with the texture embedded: one file three.js and Blender open.
+#include <string>
+
+#include "ctmap/io/atomic_file.h"
+#include "ctmap/mesh.h"
+
+namespace ctmap {
+
+/// Writes `mesh` as a binary glTF to `path`, with the PNG or JPEG file `image` embedded as the
+/// base-colour texture (untextured when `image` is empty). glTF stores one UV per vertex, so a
+/// vertex is split where its corners carry different UVs; glTF's v runs downwards, so v is
+/// flipped (DESIGN §3). Positions and UVs are stored as 32-bit floats, as glTF requires.
+/// The file is registered in `outputs` and appears only when the caller commits it.
+/// \throw BadInput if `image` cannot be read; InternalError if the file cannot be written.
+void write_glb(const TexturedMesh& mesh, const std::string& path, const std::string& image, OutputSet& outputs);
+
+/// Same, committed at once.
+void write_glb(const TexturedMesh& mesh, const std::string& path, const std::string& image = "");
+
+/// Reads back the first primitive of a glTF/GLB file: positions, indices and TEXCOORD_0 (in OBJ's
+/// convention, v flipped back), one UV per corner. Meant for tests and `ctmap check`.
+/// \throw BadInput naming the file if it cannot be loaded or has no indexed triangle primitive.
+TexturedMesh read_glb(const std::string& path);
+
+}  // namespace ctmap

@@ -1,0 +1,232 @@
+#include "ctmap/io/obj_io.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "ctmap/errors.h"
+
+namespace ctmap {
+namespace {
+
+namespace fs = std::filesystem;
+
+void put_double(std::string& out, double v) {
+    char buf[64];
+    auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);  // shortest form that round-trips
+    out.append(buf, end);
+}
+
+std::string relative_to(const std::string& target, const std::string& from_file) {
+    fs::path base = fs::absolute(fs::path(from_file)).parent_path();
+    fs::path t = fs::absolute(fs::path(target));
+    fs::path rel = t.lexically_relative(base);
+    return rel.empty() ? t.string() : rel.string();
+}
+
+void check_or_throw(std::ofstream& os, const std::string& path) {
+    if (!os.flush()) throw InternalError(path + ": could not write the file");
+}
+
+}  // namespace
+
+void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::string& image, OutputSet& outputs) {
+    const bool has_uv = !tm.uvs.empty();
+    const fs::path obj(obj_path);
+    const std::string mtl_name = obj.stem().string() + ".mtl";
+    const std::string mtl_path = (obj.parent_path() / mtl_name).string();
+    const std::string obj_tmp = outputs.add(obj_path);
+    const std::string mtl_tmp = outputs.add(mtl_path);
+
+    std::string s;
+    s.reserve(tm.mesh.positions.size() * 60 + tm.uvs.size() * 40 + tm.mesh.faces.size() * 40);
+    s += "# written by ctmap: UVs per face corner, UV = (x / W, 1 - y / H)\n";
+    s += "mtllib " + mtl_name + "\n";
+    for (const Vec3& p : tm.mesh.positions) {
+        s += "v ";
+        put_double(s, p.x());
+        s += ' ';
+        put_double(s, p.y());
+        s += ' ';
+        put_double(s, p.z());
+        s += '\n';
+    }
+    for (const Vec2& t : tm.uvs) {
+        s += "vt ";
+        put_double(s, t.x());
+        s += ' ';
+        put_double(s, t.y());
+        s += '\n';
+    }
+    s += "usemtl ctmap_texture\n";
+    for (std::size_t f = 0; f < tm.mesh.faces.size(); ++f) {
+        s += 'f';
+        for (int k = 0; k < 3; ++k) {
+            s += ' ' + std::to_string(tm.mesh.faces[f][k] + 1);
+            if (has_uv) s += '/' + std::to_string(tm.uv_faces[f][k] + 1);
+        }
+        s += '\n';
+    }
+    {
+        std::ofstream os(obj_tmp, std::ios::binary);
+        os << s;
+        check_or_throw(os, obj_path);
+    }
+    {
+        std::ofstream os(mtl_tmp, std::ios::binary);
+        os << "# written by ctmap\nnewmtl ctmap_texture\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nillum 1\n";
+        if (!image.empty()) os << "map_Kd " << relative_to(image, obj_path) << "\n";
+        check_or_throw(os, mtl_path);
+    }
+}
+
+void write_obj(const TexturedMesh& mesh, const std::string& obj_path, const std::string& image) {
+    OutputSet outputs;
+    write_obj(mesh, obj_path, image, outputs);
+    outputs.commit_all();
+}
+
+namespace {
+
+struct LineReader {
+    const std::string& path;
+    int line_no = 0;
+    [[noreturn]] void fail(const std::string& what) const {
+        throw BadInput(path, "line " + std::to_string(line_no) + ": " + what);
+    }
+};
+
+double parse_double(const char*& p, const char* end, const LineReader& r) {
+    while (p < end && (*p == ' ' || *p == '\t')) ++p;
+    double v = 0;
+    auto [next, ec] = std::from_chars(p, end, v);
+    if (ec != std::errc() ) r.fail("expected a number");
+    if (!std::isfinite(v)) r.fail("non-finite number (NaN or infinity)");
+    p = next;
+    return v;
+}
+
+/// Resolves a 1-based (or negative, relative) OBJ index against `count` elements.
+int resolve_index(long long i, std::size_t count, const char* what, const LineReader& r) {
+    long long k = i > 0 ? i - 1 : static_cast<long long>(count) + i;
+    if (i == 0 || k < 0 || k >= static_cast<long long>(count))
+        r.fail(std::string(what) + " index " + std::to_string(i) + " is out of range (there are " +
+               std::to_string(count) + ")");
+    return static_cast<int>(k);
+}
+
+}  // namespace
+
+TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw BadInput(path, "no such file");
+    if (fs::file_size(path, ec) == 0) throw BadInput(path, "the file is empty");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw BadInput(path, "cannot be opened for reading");
+
+    TexturedMesh tm;
+    std::vector<std::array<long long, 2>> corners;  // raw (v, vt) per corner of the current face
+    std::string mtllib;
+    std::string line;
+    LineReader r{path};
+    bool any_uv_face = false, any_plain_face = false;
+    while (std::getline(in, line)) {
+        ++r.line_no;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const char* p = line.data();
+        const char* end = p + line.size();
+        while (p < end && (*p == ' ' || *p == '\t')) ++p;
+        if (p == end || *p == '#') continue;
+        if (line.find('\0') != std::string::npos) r.fail("binary data in a text OBJ file");
+        auto starts = [&](const char* kw) {
+            const std::size_t n = std::strlen(kw);
+            return std::size_t(end - p) > n && std::strncmp(p, kw, n) == 0 && (p[n] == ' ' || p[n] == '\t');
+        };
+        if (starts("v")) {
+            p += 1;
+            const double x = parse_double(p, end, r), y = parse_double(p, end, r), z = parse_double(p, end, r);
+            tm.mesh.positions.emplace_back(x, y, z);
+        } else if (starts("vt")) {
+            p += 2;
+            const double u = parse_double(p, end, r), v = parse_double(p, end, r);
+            tm.uvs.emplace_back(u, v);
+        } else if (starts("f")) {
+            p += 1;
+            corners.clear();
+            while (true) {
+                while (p < end && (*p == ' ' || *p == '\t')) ++p;
+                if (p == end) break;
+                long long v = 0, t = 0;
+                auto [n1, e1] = std::from_chars(p, end, v);
+                if (e1 != std::errc()) r.fail("malformed face corner");
+                p = n1;
+                if (p < end && *p == '/') {
+                    ++p;
+                    if (p < end && *p != '/') {
+                        auto [n2, e2] = std::from_chars(p, end, t);
+                        if (e2 != std::errc()) r.fail("malformed texture index in face corner");
+                        p = n2;
+                    }
+                    if (p < end && *p == '/') {  // normal index: read and ignored
+                        ++p;
+                        long long n = 0;
+                        auto [n3, e3] = std::from_chars(p, end, n);
+                        if (e3 != std::errc()) r.fail("malformed normal index in face corner");
+                        p = n3;
+                    }
+                }
+                if (p < end && *p != ' ' && *p != '\t') r.fail("malformed face corner");
+                corners.push_back({v, t});
+            }
+            if (corners.size() < 3) r.fail("a face needs at least 3 corners");
+            std::vector<int> vi, ti;
+            for (auto [v, t] : corners) {
+                vi.push_back(resolve_index(v, tm.mesh.positions.size(), "vertex", r));
+                ti.push_back(t ? resolve_index(t, tm.uvs.size(), "texture coordinate", r) : -1);
+            }
+            const bool has_t = ti[0] >= 0;
+            for (int t : ti)
+                if ((t >= 0) != has_t) r.fail("a face mixes corners with and without texture coordinates");
+            (has_t ? any_uv_face : any_plain_face) = true;
+            for (std::size_t k = 1; k + 1 < vi.size(); ++k) {
+                tm.mesh.faces.push_back({vi[0], vi[k], vi[k + 1]});
+                tm.uv_faces.push_back({ti[0], ti[k], ti[k + 1]});
+            }
+        } else if (starts("mtllib")) {
+            std::string rest(p + 6, end);
+            rest.erase(0, rest.find_first_not_of(" \t"));
+            mtllib = rest;
+        }
+    }
+    if (tm.mesh.positions.empty()) throw BadInput(path, "no vertices (is this an OBJ file?)");
+    if (tm.mesh.faces.empty()) throw BadInput(path, "no faces");
+    if (any_uv_face && any_plain_face) throw BadInput(path, "some faces have texture coordinates and some do not");
+    if (!any_uv_face) tm.uv_faces.clear();
+    tm.chart.assign(tm.mesh.faces.size(), 0);
+
+    if (image) {
+        image->clear();
+        if (!mtllib.empty()) {
+            const fs::path mtl = fs::path(path).parent_path() / mtllib;
+            std::ifstream m(mtl);
+            std::string l;
+            while (std::getline(m, l)) {
+                if (!l.empty() && l.back() == '\r') l.pop_back();
+                std::istringstream ls(l);
+                std::string kw;
+                ls >> kw;
+                if (kw == "map_Kd") {
+                    std::string name;
+                    std::getline(ls >> std::ws, name);
+                    *image = (mtl.parent_path() / name).lexically_normal().string();
+                }
+            }
+        }
+    }
+    return tm;
+}
+
+}  // namespace ctmap

@@ -1,0 +1,115 @@
+#include "ctmap/io/read_mesh.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <tuple>
+
+#include "ctmap/errors.h"
+
+namespace ctmap {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+/// Newell's normal of a polygon: robust for non-planar and non-convex polygons.
+Vec3 newell_normal(const std::vector<Vec3>& p) {
+    Vec3 n = Vec3::Zero();
+    for (std::size_t i = 0; i < p.size(); ++i) n += p[i].cross(p[(i + 1) % p.size()]);
+    return n;
+}
+
+void triangulate_polygon(const std::string& path, std::size_t face_index,
+                         const std::vector<std::size_t>& poly, const std::vector<Vec3>& positions,
+                         std::vector<Tri>& out) {
+    if (poly.size() == 3) {
+        out.push_back({int(poly[0]), int(poly[1]), int(poly[2])});
+        return;
+    }
+    std::vector<Point> ring;
+    std::vector<Vec3> corners;
+    for (std::size_t v : poly) {
+        const Vec3& q = positions[v];
+        ring.emplace_back(q.x(), q.y(), q.z());
+        corners.push_back(q);
+    }
+    std::vector<std::tuple<int, int, int>> tris;
+    CGAL::Polygon_mesh_processing::triangulate_hole_polyline(ring, std::back_inserter(tris));
+    if (tris.size() != poly.size() - 2)
+        throw BadInput(path, "face " + std::to_string(face_index) + " (a polygon with " +
+                                 std::to_string(poly.size()) + " corners) could not be triangulated");
+    // The hole filler does not promise the polygon's orientation: follow the polygon's normal.
+    const Vec3 n = newell_normal(corners);
+    for (auto [a, b, c] : tris) {
+        Tri t{int(poly[a]), int(poly[b]), int(poly[c])};
+        const Vec3 tn = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+        if (tn.dot(n) < 0) std::swap(t[1], t[2]);
+        out.push_back(t);
+    }
+}
+
+}  // namespace
+
+TriMesh read_mesh(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw BadInput(path, "no such file");
+    if (fs::is_directory(path, ec)) throw BadInput(path, "is a directory, not a mesh file");
+    if (fs::file_size(path, ec) == 0) throw BadInput(path, "the file is empty");
+    {
+        std::ifstream probe(path, std::ios::binary);
+        if (!probe) throw BadInput(path, "cannot be opened for reading");
+    }
+    const std::string ext = lower_extension(path);
+    if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
+        throw BadInput(path, "unknown mesh format '" + ext + "' (use .off, .obj, .ply or .stl)");
+
+    std::vector<Point> points;
+    std::vector<std::vector<std::size_t>> polygons;
+    bool ok = false;
+    try {
+        ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+    } catch (const std::exception& e) {
+        throw BadInput(path, std::string("not a valid ") + ext.substr(1) + " file (" + e.what() + ")");
+    }
+    if (!ok) throw BadInput(path, "not a valid " + ext.substr(1) + " file (the reader stopped on malformed data)");
+    if (points.empty()) throw BadInput(path, "the mesh has no vertices");
+    if (polygons.empty()) throw BadInput(path, "the mesh has no faces");
+
+    TriMesh mesh;
+    mesh.positions.reserve(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const Point& p = points[i];
+        if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+            throw BadInput(path, "vertex " + std::to_string(i) + " has a non-finite coordinate (NaN or infinity)");
+        mesh.positions.emplace_back(p.x(), p.y(), p.z());
+    }
+    mesh.faces.reserve(polygons.size());
+    for (std::size_t f = 0; f < polygons.size(); ++f) {
+        const auto& poly = polygons[f];
+        if (poly.size() < 3)
+            throw BadInput(path, "face " + std::to_string(f) + " has " + std::to_string(poly.size()) +
+                                     " corners; a face needs at least 3");
+        for (std::size_t v : poly)
+            if (v >= points.size())
+                throw BadInput(path, "face " + std::to_string(f) + " uses vertex " + std::to_string(v) +
+                                         ", but the file has only " + std::to_string(points.size()) +
+                                         " vertices");
+        triangulate_polygon(path, f, poly, mesh.positions, mesh.faces);
+    }
+    return mesh;
+}
+
+}  // namespace ctmap
