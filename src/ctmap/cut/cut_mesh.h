@@ -36,3 +36,47 @@ struct CutMesh {
 };
 
 }  // namespace ctmap
+
+#include <functional>
+#include <string>
+
+namespace ctmap {
+
+/// Options of `cut_mesh`.
+struct CutOptions {
+    /// Steiner point spacing relative to the mean edge length of the input (paper §2.3: "given a
+    /// constant length, each edge is inserted with several intermediate points").
+    double spacing_factor = 0.34;
+    /// How many times the fallback may refine around a path's ends before giving up.
+    int max_refinements = 8;
+    /// Called with a short message as paths are inserted (for progress lines).
+    std::function<void(int done, int total)> progress;
+};
+
+/// Counts of the cut, for reports and benchmarks.
+struct CutStats {
+    int paths = 0;              ///< interior paths searched and inserted
+    int fallback_fired = 0;     ///< paths that needed the refinement fallback
+    int steiner_vertices = 0;   ///< vertices added by the fallback
+    int inserted_vertices = 0;  ///< all vertices added (paths + fallback)
+    double path_length = 0;     ///< total length of the interior paths
+};
+
+/// The border features in the order the mesh border meets them (interior on the left), starting
+/// anywhere. \pre `mesh` is a disc; feature_vertex holds distinct vertex ids.
+std::vector<int> border_features(const TriMesh& mesh, const std::vector<int>& feature_vertex);
+
+/// Cuts `mesh` into one patch per triangle of `ft` (paper §2.3, Table 1): border edges of the
+/// triangulation follow the mesh border; interior edges become approximate shortest paths,
+/// inserted border first, then a spanning tree of the remaining features (so that every region
+/// stays a disc whose boundary holds all its features: closing an edge then cannot block a later
+/// one), then the remaining edges shortest first. Each path respects DESIGN §2 conditions 1-3;
+/// when none exists the mesh is refined around the path's ends (Steiner vertices) and the search
+/// repeated (condition 4).
+/// \pre `mesh` is a disc; `ft` was built from the features' image points with the border order
+///      of `border_features`.
+/// \throw InternalError if the cut fails on this (valid) input.
+CutMesh cut_mesh(const TriMesh& mesh, const std::vector<int>& feature_vertex, const FeatureTriangulation& ft,
+                 const CutOptions& options = {}, CutStats* stats = nullptr);
+
+}  // namespace ctmap

@@ -1,0 +1,50 @@
+#pragma once
+/// \file approximate_path.h
+/// Approximate shortest paths on the surface (paper §2.3, after Zhang & Wu): Steiner points on
+/// every edge, as many as the edge's length over a spacing, a graph joining the points that share
+/// a face, and A* (Dijkstra with the straight-line distance as its admissible bound).
+#include <optional>
+#include <unordered_set>
+#include <vector>
+
+#include "ctmap/cut/insert_path.h"
+#include "ctmap/cut/work_mesh.h"
+
+namespace ctmap {
+
+/// Where a path may start or end: the faces around the end vertex it may cross first, and the
+/// neighbours it may step to along an edge (the sector of DESIGN §2 condition 2).
+struct EndSector {
+    std::vector<int> faces;
+    std::vector<int> edge_neighbours;
+};
+
+/// What the search must respect (DESIGN §2 conditions 1-2).
+struct PathConstraints {
+    int source = -1, target = -1;
+    const std::vector<char>* blocked = nullptr;                 ///< per vertex: on a path or a feature
+    const std::unordered_set<std::uint64_t>* path_edges = nullptr;  ///< edges of embedded paths
+    EndSector source_sector, target_sector;
+};
+
+/// Options of the search.
+struct PathSearchOptions {
+    double spacing = 0;  ///< Steiner point spacing (world units); > 0
+};
+
+/// A path found by `find_path`.
+struct FoundPath {
+    std::vector<PathNode> nodes;
+    double length = 0;
+};
+
+/// Shortest path in the Steiner graph from `c.source` to `c.target` that avoids blocked vertices
+/// and path edges (Steiner points are never put on path edges, so it cannot cross a path), leaves
+/// the source through its sector and enters the target through its sector. Points on a free edge
+/// stay usable even when both its ends are blocked (an edge with no Steiner point then gets one),
+/// which lets a path squeeze between two others.
+/// \pre spacing > 0, source != target.
+/// \return nothing when the target cannot be reached in the graph.
+std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& c, const PathSearchOptions& opt);
+
+}  // namespace ctmap

@@ -1,0 +1,272 @@
+#include "ctmap/cut/cut_mesh.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <set>
+
+#include "ctmap/cut/approximate_path.h"
+#include "ctmap/cut/insert_path.h"
+#include "ctmap/cut/work_mesh.h"
+#include "ctmap/errors.h"
+
+namespace ctmap {
+namespace {
+
+/// The path network as it grows: paths as vertex chains, what they block.
+struct Network {
+    WorkMesh mesh;
+    const FeatureTriangulation& ft;
+    std::vector<int> fv;  // feature -> vertex
+    std::vector<char> blocked;
+    std::unordered_set<std::uint64_t> path_edges;
+    std::map<std::pair<int, int>, std::vector<int>> chains;  // (a, b) -> vertex chain from a to b
+
+    Network(const TriMesh& m, const std::vector<int>& feature_vertex, const FeatureTriangulation& t)
+        : mesh(m), ft(t), fv(feature_vertex), blocked(m.positions.size(), 0) {
+        for (int v : fv) blocked[v] = 1;
+    }
+
+    bool embedded(int a, int b) const { return chains.count({a, b}) > 0; }
+
+    void add_chain(int a, int b, const std::vector<int>& chain) {
+        chains[{a, b}] = chain;
+        chains[{b, a}] = std::vector<int>(chain.rbegin(), chain.rend());
+        blocked.resize(mesh.positions.size(), 0);
+        for (int v : chain) blocked[v] = 1;
+        for (std::size_t i = 0; i + 1 < chain.size(); ++i) path_edges.insert(edge_key(chain[i], chain[i + 1]));
+    }
+
+    /// Sector at feature `u` for a new path towards neighbour `w` (DESIGN §2 condition 2).
+    EndSector sector(int u, int w) const {
+        const std::vector<int>& nb = ft.neighbours[u];
+        const int d = int(nb.size());
+        const int k = int(std::find(nb.begin(), nb.end(), w) - nb.begin());
+        int prev = -1, next = -1;
+        for (int s = 1; s < d && prev < 0; ++s)
+            if (embedded(u, nb[(k - s + d) % d])) prev = nb[(k - s + d) % d];
+        for (int s = 1; s < d && next < 0; ++s)
+            if (embedded(u, nb[(k + s) % d])) next = nb[(k + s) % d];
+        const auto fan = mesh.fan(fv[u]);
+        EndSector out;
+        if (prev < 0) {  // nothing embedded at u yet: every direction is allowed
+            for (const auto& e : fan) {
+                out.faces.push_back(e.face);
+                out.edge_neighbours.push_back(e.to);
+                out.edge_neighbours.push_back(e.from);
+            }
+            return out;
+        }
+        const int xp = chains.at({u, prev})[1], xq = chains.at({u, next})[1];
+        const int n = int(fan.size());
+        int i = 0;
+        while (i < n && fan[i].from != xp) ++i;
+        if (i == n) throw InternalError("cut: a path does not leave its feature along a mesh edge");
+        for (int s = 0; s < n; ++s) {
+            const auto& e = fan[(i + s) % n];
+            out.faces.push_back(e.face);
+            if (e.to == xq) break;
+            out.edge_neighbours.push_back(e.to);
+        }
+        return out;
+    }
+
+    /// Inserts a Steiner vertex at the centre of every face in the sectors (condition 4).
+    int refine_sector(const EndSector& s) {
+        int added = 0;
+        std::vector<Vec3> centres;
+        std::vector<std::array<int, 3>> corners;
+        for (int f : s.faces) corners.push_back(mesh.faces[f]);
+        for (const auto& t : corners) {
+            // Faces are renumbered by each insertion: find the face again by its corners.
+            int f = -1;
+            for (int g : mesh.vertex_faces[t[0]])
+                if (mesh.faces[g] == t) f = g;
+            if (f < 0) continue;
+            insert_point(mesh, f, Vec3(1.0 / 3, 1.0 / 3, 1.0 / 3));
+            ++added;
+        }
+        blocked.resize(mesh.positions.size(), 0);
+        return added;
+    }
+};
+
+double mean_edge_length(const TriMesh& m) {
+    double sum = 0;
+    for (const Tri& t : m.faces)
+        for (int k = 0; k < 3; ++k) sum += (m.positions[t[k]] - m.positions[t[(k + 1) % 3]]).norm();
+    return sum / (3.0 * m.faces.size());
+}
+
+}  // namespace
+
+std::vector<int> border_features(const TriMesh& mesh, const std::vector<int>& feature_vertex) {
+    WorkMesh wm(mesh);
+    std::unordered_map<int, int> feature_of;
+    for (int i = 0; i < int(feature_vertex.size()); ++i) feature_of[feature_vertex[i]] = i;
+    std::vector<int> out;
+    for (int v : wm.border_loop())
+        if (feature_of.count(v)) out.push_back(feature_of[v]);
+    return out;
+}
+
+CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, const FeatureTriangulation& ft,
+                 const CutOptions& opt, CutStats* stats_out) {
+    CutStats stats;
+    Network net(input, feature_vertex, ft);
+    const int nfeat = int(feature_vertex.size());
+
+    // Border edges of the triangulation follow the mesh border (Table 1, first branch).
+    std::vector<int> loop = net.mesh.border_loop();
+    {
+        const auto it = std::find_if(loop.begin(), loop.end(), [&](int v) {
+            return std::find(feature_vertex.begin(), feature_vertex.end(), v) != feature_vertex.end();
+        });
+        std::rotate(loop.begin(), it, loop.end());
+        loop.push_back(loop.front());
+        std::unordered_map<int, int> feature_of;
+        for (int i = 0; i < nfeat; ++i) feature_of[feature_vertex[i]] = i;
+        std::vector<int> arc{loop[0]};
+        for (std::size_t i = 1; i < loop.size(); ++i) {
+            arc.push_back(loop[i]);
+            if (feature_of.count(loop[i])) {
+                net.add_chain(feature_of[arc.front()], feature_of[arc.back()], arc);
+                arc = {loop[i]};
+            }
+        }
+    }
+
+    // Insertion order: a spanning tree grown from the border (Prim, by 3D distance), then the
+    // closing edges shortest first. While the tree grows no region is split, and afterwards every
+    // feature of a region lies on its boundary, so a path that respects the sectors at its ends
+    // separates exactly the right features (condition 3 holds by construction).
+    auto dist3 = [&](int a, int b) { return (input.positions[feature_vertex[a]] - input.positions[feature_vertex[b]]).norm(); };
+    std::vector<std::array<int, 2>> order;
+    std::vector<char> in_tree(nfeat, 0);
+    for (int b : ft.border) in_tree[b] = 1;
+    std::set<std::array<int, 2>> pending;
+    for (std::size_t e = 0; e < ft.edges.size(); ++e)
+        if (!ft.edge_on_border[e]) pending.insert(ft.edges[e]);
+    while (true) {
+        double best = std::numeric_limits<double>::infinity();
+        std::array<int, 2> pick{-1, -1};
+        for (const auto& e : pending)
+            if (in_tree[e[0]] != in_tree[e[1]] && dist3(e[0], e[1]) < best) {
+                best = dist3(e[0], e[1]);
+                pick = in_tree[e[0]] ? e : std::array<int, 2>{e[1], e[0]};
+            }
+        if (pick[0] < 0) break;
+        order.push_back(pick);
+        in_tree[pick[1]] = 1;
+        pending.erase({std::min(pick[0], pick[1]), std::max(pick[0], pick[1])});
+    }
+    if (std::count(in_tree.begin(), in_tree.end(), 0))
+        throw InternalError("cut: the feature triangulation does not connect every feature to the border");
+    std::vector<std::array<int, 2>> closing(pending.begin(), pending.end());
+    std::stable_sort(closing.begin(), closing.end(),
+                     [&](const auto& a, const auto& b) { return dist3(a[0], a[1]) < dist3(b[0], b[1]); });
+    order.insert(order.end(), closing.begin(), closing.end());
+
+    PathSearchOptions search;
+    search.spacing = opt.spacing_factor * mean_edge_length(input);
+    const int total = int(order.size());
+    for (int i = 0; i < total; ++i) {
+        const auto [u, w] = order[i];
+        std::optional<FoundPath> found;
+        for (int attempt = 0; attempt <= opt.max_refinements; ++attempt) {
+            PathConstraints c;
+            c.source = feature_vertex[u];
+            c.target = feature_vertex[w];
+            c.blocked = &net.blocked;
+            c.path_edges = &net.path_edges;
+            c.source_sector = net.sector(u, w);
+            c.target_sector = net.sector(w, u);
+            PathSearchOptions s = search;
+            s.spacing = search.spacing / double(1 << std::min(attempt, 4));
+            found = find_path(net.mesh, c, s);
+            if (found) break;
+            if (attempt == 0) ++stats.fallback_fired;
+            const int added = net.refine_sector(c.source_sector) + net.refine_sector(net.sector(w, u));
+            stats.steiner_vertices += added;
+        }
+        if (!found)
+            throw InternalError("cut: no valid path between features " + std::to_string(u) + " and " +
+                                std::to_string(w) + " after refinement");
+        stats.path_length += found->length;
+        net.add_chain(u, w, insert_path(net.mesh, found->nodes));
+        ++stats.paths;
+        if (opt.progress) opt.progress(i + 1, total);
+    }
+
+    // Patches: faces joined across non-path edges; each image triangle (a, b, c) owns the region
+    // just counter-clockwise of the path a->b at a.
+    const WorkMesh& m = net.mesh;
+    const int nf = int(m.faces.size());
+    std::vector<int> comp(nf, -1);
+    int ncomp = 0;
+    for (int f0 = 0; f0 < nf; ++f0) {
+        if (comp[f0] >= 0) continue;
+        std::vector<int> stack{f0};
+        comp[f0] = ncomp;
+        while (!stack.empty()) {
+            const int f = stack.back();
+            stack.pop_back();
+            for (int k = 0; k < 3; ++k) {
+                const int a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
+                if (net.path_edges.count(edge_key(a, b))) continue;
+                for (int g : m.edge_faces[m.find_edge(a, b)])
+                    if (g >= 0 && comp[g] < 0) {
+                        comp[g] = ncomp;
+                        stack.push_back(g);
+                    }
+            }
+        }
+        ++ncomp;
+    }
+    CutMesh out;
+    out.patches.resize(ft.triangles.size());
+    std::vector<int> patch_of_comp(ncomp, -1);
+    for (int t = 0; t < int(ft.triangles.size()); ++t) {
+        const Tri& tri = ft.triangles[t];
+        Patch& p = out.patches[t];
+        p.corners = tri;
+        for (int k = 0; k < 3; ++k) p.sides[k] = net.chains.at({tri[k], tri[(k + 1) % 3]});
+        const int a = feature_vertex[tri[0]], xb = p.sides[0][1];
+        int face = -1;
+        for (const auto& e : m.fan(a))
+            if (e.from == xb) face = e.face;
+        if (face < 0 || patch_of_comp[comp[face]] >= 0)
+            throw InternalError("cut: image triangle " + std::to_string(t) + " has no region of its own");
+        patch_of_comp[comp[face]] = t;
+    }
+    if (std::count(patch_of_comp.begin(), patch_of_comp.end(), -1))
+        throw InternalError("cut: a region of the mesh matches no image triangle");
+
+    out.num_input_vertices = input.num_vertices();
+    out.mesh.positions = m.positions;
+    out.mesh.faces = m.faces;
+    out.feature_vertex = feature_vertex;
+    out.face_patch.resize(nf);
+    for (int f = 0; f < nf; ++f) out.face_patch[f] = patch_of_comp[comp[f]];
+    out.vertex_face.assign(m.positions.size(), -1);
+    out.vertex_bary.assign(m.positions.size(), Vec3::Zero());
+    for (int v = 0; v < m.num_vertices(); ++v) {
+        if (m.vertex_faces[v].empty()) continue;
+        const int f = m.origin[m.vertex_faces[v][0]];
+        const Tri& t = input.faces[f];
+        const Vec3 &A = input.positions[t[0]], &B = input.positions[t[1]], &C = input.positions[t[2]];
+        // Barycentric coordinates by areas in the face's plane (the vertex lies in it).
+        const Vec3 n = (B - A).cross(C - A);
+        const Vec3& P = m.positions[v];
+        const double l1 = (P - A).cross(C - A).dot(n) / n.squaredNorm();
+        const double l2 = (B - A).cross(P - A).dot(n) / n.squaredNorm();
+        out.vertex_face[v] = f;
+        out.vertex_bary[v] = Vec3(1 - l1 - l2, l1, l2);
+    }
+    stats.inserted_vertices = m.num_vertices() - input.num_vertices();
+    out.steiner_vertices = stats.steiner_vertices;
+    if (stats_out) *stats_out = stats;
+    return out;
+}
+
+}  // namespace ctmap

@@ -1,0 +1,88 @@
+#include "ctmap/cut/work_mesh.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "ctmap/errors.h"
+
+namespace ctmap {
+
+WorkMesh::WorkMesh(const TriMesh& m) : positions(m.positions), faces(m.faces), origin(m.faces.size()) {
+    std::iota(origin.begin(), origin.end(), 0);
+    rebuild();
+}
+
+void WorkMesh::rebuild() {
+    edges.clear();
+    edge_id.clear();
+    edge_faces.clear();
+    edge_id.reserve(faces.size() * 2);
+    vertex_faces.assign(positions.size(), {});
+    for (int f = 0; f < int(faces.size()); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = faces[f][k], b = faces[f][(k + 1) % 3];
+            vertex_faces[a].push_back(f);
+            auto [it, fresh] = edge_id.emplace(edge_key(a, b), int(edges.size()));
+            if (fresh) {
+                edges.push_back(edge_key(a, b));
+                edge_faces.push_back({f, -1});
+            } else {
+                edge_faces[it->second][1] = f;
+            }
+        }
+}
+
+std::vector<WorkMesh::FanEntry> WorkMesh::fan(int v) const {
+    // Per incident face, the corners after v in its orientation.
+    std::vector<FanEntry> entries;
+    for (int f : vertex_faces[v]) {
+        const Tri& t = faces[f];
+        const int k = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+        entries.push_back({f, t[(k + 1) % 3], t[(k + 2) % 3]});
+    }
+    // Start at the face whose `from` edge is on the border (no face ends at it), else anywhere.
+    int start = 0;
+    for (int i = 0; i < int(entries.size()); ++i) {
+        const bool ended = std::any_of(entries.begin(), entries.end(), [&](const FanEntry& e) { return e.to == entries[i].from; });
+        if (!ended) {
+            start = i;
+            break;
+        }
+    }
+    std::vector<FanEntry> out{entries[start]};
+    std::vector<char> used(entries.size(), 0);
+    used[start] = 1;
+    while (out.size() < entries.size()) {
+        const int want = out.back().to;
+        int next = -1;
+        for (int i = 0; i < int(entries.size()); ++i)
+            if (!used[i] && entries[i].from == want) next = i;
+        if (next < 0) throw InternalError("the mesh is not manifold around vertex " + std::to_string(v));
+        used[next] = 1;
+        out.push_back(entries[next]);
+    }
+    return out;
+}
+
+std::vector<int> WorkMesh::border_loop() const {
+    std::unordered_map<int, int> next;  // border halfedge a -> b in face orientation
+    for (int e = 0; e < int(edges.size()); ++e) {
+        if (!is_border_edge(e)) continue;
+        const Tri& t = faces[edge_faces[e][0]];
+        for (int k = 0; k < 3; ++k) {
+            const int a = t[k], b = t[(k + 1) % 3];
+            if (edge_key(a, b) == edges[e]) next[a] = b;
+        }
+    }
+    std::vector<int> loop;
+    if (next.empty()) return loop;
+    const int start = std::min_element(next.begin(), next.end())->first;  // deterministic start
+    int v = start;
+    do {
+        loop.push_back(v);
+        v = next.at(v);
+    } while (v != start && loop.size() <= next.size());
+    return loop;
+}
+
+}  // namespace ctmap

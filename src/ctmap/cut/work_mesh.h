@@ -1,0 +1,54 @@
+#pragma once
+/// \file work_mesh.h
+/// The mesh the cut refines: triangles that only ever get split (never flipped or moved), each
+/// remembering the input face it lies in, with the adjacency the path search needs.
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "ctmap/mesh.h"
+
+namespace ctmap {
+
+/// Key of the undirected edge {a, b}.
+inline std::uint64_t edge_key(int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
+inline int key_lo(std::uint64_t k) { return int(k >> 32); }
+inline int key_hi(std::uint64_t k) { return int(k & 0xffffffffu); }
+
+/// A refinable triangle mesh with its adjacency.
+struct WorkMesh {
+    std::vector<Vec3> positions;
+    std::vector<Tri> faces;
+    std::vector<int> origin;  ///< input face each face lies in
+
+    // Adjacency, valid after rebuild().
+    std::vector<std::uint64_t> edges;                    ///< edge keys, index = edge id
+    std::unordered_map<std::uint64_t, int> edge_id;      ///< key -> edge id
+    std::vector<std::array<int, 2>> edge_faces;          ///< per edge: its faces (-1 when on the border)
+    std::vector<std::vector<int>> vertex_faces;          ///< per vertex: incident faces
+
+    explicit WorkMesh(const TriMesh& m);
+    void rebuild();
+    int num_vertices() const { return int(positions.size()); }
+    int find_edge(int a, int b) const {
+        auto it = edge_id.find(edge_key(a, b));
+        return it == edge_id.end() ? -1 : it->second;
+    }
+    bool is_border_edge(int e) const { return edge_faces[e][1] < 0; }
+
+    /// Faces around `v` in counter-clockwise order, each with the edge it starts from: for face
+    /// (v, x, y) the fan goes from edge (v, x) to edge (v, y). A border vertex's fan starts at
+    /// its outgoing border edge. \pre the mesh is a manifold, consistently oriented disc.
+    struct FanEntry {
+        int face, from, to;  ///< face (v, from, to)
+    };
+    std::vector<FanEntry> fan(int v) const;
+
+    /// The border as one loop of vertices in the faces' orientation (interior on the left).
+    std::vector<int> border_loop() const;
+};
+
+}  // namespace ctmap
