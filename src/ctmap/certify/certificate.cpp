@@ -1,0 +1,319 @@
+#include "ctmap/certify/certificate.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <unordered_map>
+
+#include "ctmap/errors.h"
+
+namespace ctmap {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+K::Point_2 pt(const Vec2& p) { return K::Point_2(p.x(), p.y()); }
+
+/// c lies on the closed segment [a, b], given that a, b, c are collinear. Coordinate comparisons
+/// of doubles are exact, so this stays exact.
+bool between(const Vec2& a, const Vec2& b, const Vec2& c) {
+    return std::min(a.x(), b.x()) <= c.x() && c.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= c.y() &&
+           c.y() <= std::max(a.y(), b.y());
+}
+
+int sign_of(double x) { return (x > 0) - (x < 0); }
+
+/// Identity of a UV vertex: a mesh vertex and its UV, bitwise. Corners of one mesh vertex with
+/// equal UVs are one UV vertex even when the file repeats the `vt` per face.
+struct UvKey {
+    int vertex;
+    std::uint64_t x, y;
+    bool operator==(const UvKey& o) const { return vertex == o.vertex && x == o.x && y == o.y; }
+};
+struct UvKeyHash {
+    std::size_t operator()(const UvKey& k) const {
+        std::uint64_t h = std::uint64_t(k.vertex) * 0x9E3779B97F4A7C15ull;
+        h ^= k.x + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+        h ^= k.y + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+        return std::size_t(h);
+    }
+};
+std::uint64_t bits(double d) {
+    if (d == 0) d = 0;  // -0.0 and 0.0 are the same point
+    std::uint64_t u;
+    std::memcpy(&u, &d, sizeof u);
+    return u;
+}
+
+void check_shapes(const TexturedMesh& tm) {
+    const std::size_t nf = tm.mesh.faces.size();
+    if (tm.uv_faces.size() != nf)
+        throw BadInput("", "the map has " + std::to_string(tm.uv_faces.size()) + " UV faces for " +
+                               std::to_string(nf) + " faces (every face needs texture coordinates)");
+    if (!tm.chart.empty() && tm.chart.size() != nf)
+        throw BadInput("", "the map has " + std::to_string(tm.chart.size()) + " chart ids for " + std::to_string(nf) +
+                               " faces");
+    const int nuv = int(tm.uvs.size()), nv = tm.mesh.num_vertices();
+    for (std::size_t f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) {
+            if (tm.uv_faces[f][k] < 0 || tm.uv_faces[f][k] >= nuv)
+                throw BadInput("", "face " + std::to_string(f) + " uses texture coordinate " +
+                                       std::to_string(tm.uv_faces[f][k]) + ", but there are " + std::to_string(nuv));
+            if (tm.mesh.faces[f][k] < 0 || tm.mesh.faces[f][k] >= nv)
+                throw BadInput("", "face " + std::to_string(f) + " uses vertex " + std::to_string(tm.mesh.faces[f][k]) +
+                                       ", but there are " + std::to_string(nv));
+        }
+}
+
+/// Singular values (s1 >= s2 >= 0) of the 2x2 matrix [[a, b], [c, d]] in closed form.
+void singular_values(double a, double b, double c, double d, double& s1, double& s2) {
+    const double E = 0.5 * (a + d), F = 0.5 * (a - d), G = 0.5 * (c + b), H = 0.5 * (c - b);
+    const double Q = std::hypot(E, H), R = std::hypot(F, G);
+    s1 = Q + R;
+    s2 = std::abs(Q - R);
+}
+
+}  // namespace
+
+int orientation_2d(const Vec2& a, const Vec2& b, const Vec2& c) {
+    return int(CGAL::orientation(pt(a), pt(b), pt(c)));
+}
+
+bool segments_intersect_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+    const int o1 = orientation_2d(a, b, c), o2 = orientation_2d(a, b, d);
+    const int o3 = orientation_2d(c, d, a), o4 = orientation_2d(c, d, b);
+    if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+    if (o1 == 0 && between(a, b, c)) return true;
+    if (o2 == 0 && between(a, b, d)) return true;
+    if (o3 == 0 && between(c, d, a)) return true;
+    if (o4 == 0 && between(c, d, b)) return true;
+    return false;
+}
+
+Distortion measure_distortion(const TexturedMesh& tm) {
+    check_shapes(tm);
+    const TriMesh& m = tm.mesh;
+    Distortion d;
+    double area3 = 0, area2 = 0;
+    for (int f = 0; f < m.num_faces(); ++f) {
+        const Tri& t = m.faces[f];
+        const Tri& u = tm.uv_faces[f];
+        area3 += 0.5 * (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]).norm();
+        const Vec2 q1 = tm.uvs[u[1]] - tm.uvs[u[0]], q2 = tm.uvs[u[2]] - tm.uvs[u[0]];
+        area2 += 0.5 * std::abs(q1.x() * q2.y() - q1.y() * q2.x());
+    }
+    const double inf = std::numeric_limits<double>::infinity();
+    if (!(area3 > 0) || !(area2 > 0)) {
+        d.symmetric_dirichlet = d.conformal_mean = d.conformal_max = d.area_mean = d.area_max = d.l2_stretch = inf;
+        return d;
+    }
+    // Scale UVs to the 3D area, so that every measure is 1 (4 for the Dirichlet energy) for an
+    // isometry and the numbers of different maps of one mesh compare.
+    const double scale = std::sqrt(area3 / area2);
+    double w_sum = 0, sd = 0, conf = 0, area = 0, l2 = 0;
+    for (int f = 0; f < m.num_faces(); ++f) {
+        const Tri& t = m.faces[f];
+        const Tri& u = tm.uv_faces[f];
+        const Vec3 e1 = m.positions[t[1]] - m.positions[t[0]], e2 = m.positions[t[2]] - m.positions[t[0]];
+        const double l1 = e1.norm(), n = e1.cross(e2).norm();
+        const double A = 0.5 * n;
+        if (!(A > 0) || !(l1 > 0)) continue;
+        // The face in its own plane: P1 = (l1, 0), P2 = (e2.x, h); J = [q1 q2] [P1 P2]^-1.
+        const double px = e2.dot(e1) / l1, h = n / l1;
+        const Vec2 q1 = scale * (tm.uvs[u[1]] - tm.uvs[u[0]]), q2 = scale * (tm.uvs[u[2]] - tm.uvs[u[0]]);
+        // [P1 P2]^-1 = [[1/l1, -px/(l1 h)], [0, 1/h]]
+        const double a = q1.x() / l1, c = q1.y() / l1;
+        const double b = (q2.x() - px * a) / h, dd = (q2.y() - px * c) / h;
+        double s1, s2;
+        singular_values(a, b, c, dd, s1, s2);
+        double f_sd, f_conf, f_area, f_l2;
+        if (s2 > 0) {
+            f_sd = s1 * s1 + s2 * s2 + 1 / (s1 * s1) + 1 / (s2 * s2);
+            f_conf = s1 / s2;
+            const double j = s1 * s2;
+            f_area = std::max(j, 1 / j);
+            f_l2 = 0.5 * (1 / (s1 * s1) + 1 / (s2 * s2));
+        } else {
+            f_sd = f_conf = f_area = f_l2 = inf;
+        }
+        w_sum += A;
+        sd += A * f_sd;
+        conf += A * f_conf;
+        area += A * f_area;
+        l2 += A * f_l2;
+        d.conformal_max = std::max(d.conformal_max, f_conf);
+        d.area_max = std::max(d.area_max, f_area);
+        ++d.faces_measured;
+    }
+    if (w_sum > 0) {
+        d.symmetric_dirichlet = sd / w_sum;
+        d.conformal_mean = conf / w_sum;
+        d.area_mean = area / w_sum;
+        d.l2_stretch = std::sqrt(l2 / w_sum);
+    }
+    return d;
+}
+
+Certificate certify(const TexturedMesh& tm, const std::vector<int>& feature_vertex,
+                    const std::vector<Vec2>& feature_uv, const CertifyOptions& options) {
+    check_shapes(tm);
+    if (feature_vertex.size() != feature_uv.size())
+        throw BadInput("", std::to_string(feature_vertex.size()) + " feature vertices for " +
+                               std::to_string(feature_uv.size()) + " feature UVs");
+    const TriMesh& m = tm.mesh;
+    const int nf = m.num_faces(), nv = m.num_vertices();
+    Certificate c;
+    c.triangles = nf;
+
+    // Orientation, exactly, per face; then the majority per chart.
+    std::vector<signed char> sign(nf);
+    std::unordered_map<int, std::pair<int, int>> per_chart;  // chart -> (positive, negative)
+    for (int f = 0; f < nf; ++f) {
+        const Tri& u = tm.uv_faces[f];
+        sign[f] = static_cast<signed char>(orientation_2d(tm.uvs[u[0]], tm.uvs[u[1]], tm.uvs[u[2]]));
+        auto& pn = per_chart[tm.chart.empty() ? 0 : tm.chart[f]];
+        if (sign[f] > 0) ++c.positive, ++pn.first;
+        if (sign[f] < 0) ++c.negative, ++pn.second;
+        if (sign[f] == 0) ++c.degenerate;
+    }
+    c.mirrored = c.negative > c.positive;
+    for (const auto& [chart, pn] : per_chart) c.flipped += std::min(pn.first, pn.second);
+    for (int f = 0; f < nf && c.bad_faces.size() < 20; ++f) {
+        const auto& pn = per_chart[tm.chart.empty() ? 0 : tm.chart[f]];
+        const int majority = pn.first >= pn.second ? 1 : -1;
+        if (sign[f] != majority) c.bad_faces.push_back(f);
+    }
+
+    // Features: every UV corner of the feature's vertex against the constraint.
+    std::vector<int> feature_of(nv, -1);
+    for (std::size_t i = 0; i < feature_vertex.size(); ++i) {
+        const int v = feature_vertex[i];
+        if (v < 0 || v >= nv)
+            throw BadInput("", "feature " + std::to_string(i) + " names vertex " + std::to_string(v) + ", but the map has " +
+                                   std::to_string(nv) + " vertices");
+        feature_of[v] = int(i);
+    }
+    std::vector<char> seen(feature_vertex.size(), 0);
+    for (int f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int i = feature_of[m.faces[f][k]];
+            if (i < 0) continue;
+            seen[i] = 1;
+            const double e = (tm.uvs[tm.uv_faces[f][k]] - feature_uv[i]).norm();
+            if (!(e <= c.feature_max_error)) {  // also catches NaN
+                c.feature_max_error = std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
+                c.worst_feature = int(i);
+            }
+        }
+    for (std::size_t i = 0; i < seen.size(); ++i)
+        if (!seen[i])
+            throw BadInput("", "feature " + std::to_string(i) + ": vertex " + std::to_string(feature_vertex[i]) +
+                                   " is used by no face");
+
+    // UV border: canonical UV vertices, edges of exactly one UV face.
+    std::unordered_map<UvKey, int, UvKeyHash> ids;
+    std::vector<Vec2> pos;
+    std::vector<std::array<int, 3>> corner_id(nf);
+    for (int f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const Vec2& p = tm.uvs[tm.uv_faces[f][k]];
+            const UvKey key{m.faces[f][k], bits(p.x()), bits(p.y())};
+            auto [it, inserted] = ids.try_emplace(key, int(pos.size()));
+            if (inserted) pos.push_back(p);
+            corner_id[f][k] = it->second;
+        }
+    std::unordered_map<std::uint64_t, int> edge_count;
+    edge_count.reserve(std::size_t(nf) * 2);
+    auto key_of = [](int a, int b) {
+        if (a > b) std::swap(a, b);
+        return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+    };
+    for (int f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) ++edge_count[key_of(corner_id[f][k], corner_id[f][(k + 1) % 3])];
+    std::vector<std::array<int, 2>> border;
+    std::vector<int> border_degree(pos.size(), 0);
+    for (const auto& [key, n] : edge_count) {
+        if (n > 2) ++c.border_crossings;  // a UV edge of three or more faces: the UV surface folds onto itself
+        if (n != 1) continue;
+        const int a = int(key >> 32), b = int(key & 0xffffffffu);
+        border.push_back({a, b});
+        ++border_degree[a];
+        ++border_degree[b];
+    }
+    // A UV vertex with more than two border edges pinches the border: it touches itself there.
+    for (int deg : border_degree)
+        if (deg > 2) ++c.border_crossings;
+    c.border_edges = int(border.size());
+
+    using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
+    std::vector<Box> boxes;
+    boxes.reserve(border.size());
+    for (std::size_t e = 0; e < border.size(); ++e) {
+        const Vec2 &a = pos[border[e][0]], &b = pos[border[e][1]];
+        boxes.emplace_back(CGAL::Bbox_2(std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()),
+                                        std::max(a.y(), b.y())),
+                           e);
+    }
+    // Closed boxes (CGAL's default) report touching boxes, so touching segments are tested too.
+    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+        const auto& e = border[x.info()];
+        const auto& g = border[y.info()];
+        int shared = -1, ea = -1, ga = -1;  // shared vertex, and the other end of each edge
+        for (int i = 0; i < 2; ++i)
+            for (int j = 0; j < 2; ++j)
+                if (e[i] == g[j]) {
+                    shared = e[i];
+                    ea = e[1 - i];
+                    ga = g[1 - j];
+                }
+        if (shared < 0) {
+            if (segments_intersect_2d(pos[e[0]], pos[e[1]], pos[g[0]], pos[g[1]])) ++c.border_crossings;
+            return;
+        }
+        // Neighbours along the border meet at their shared end; they must not overlap beyond it
+        // (collinear and pointing the same way), and neither may have zero length.
+        const Vec2 &s = pos[shared], &p = pos[ea], &q = pos[ga];
+        if (p == s || q == s) {
+            ++c.border_crossings;
+            return;
+        }
+        if (orientation_2d(s, p, q) == 0 && sign_of(p.x() - s.x()) == sign_of(q.x() - s.x()) &&
+            sign_of(p.y() - s.y()) == sign_of(q.y() - s.y()))
+            ++c.border_crossings;
+    });
+    c.border_simple = c.border_crossings == 0;
+
+    if (options.distortion) c.distortion = measure_distortion(tm);
+    c.valid = c.flipped == 0 && c.degenerate == 0 && c.feature_max_error == 0 && c.border_simple;
+    return c;
+}
+
+nlohmann::json certificate_to_json(const Certificate& c) {
+    nlohmann::json j;
+    j["valid"] = c.valid;
+    j["flipped"] = c.flipped;
+    j["degenerate"] = c.degenerate;
+    j["feature_max_error"] = c.feature_max_error;
+    j["border_simple"] = c.border_simple;
+    j["triangles"] = c.triangles;
+    j["mirrored"] = c.mirrored;
+    j["border_edges"] = c.border_edges;
+    j["border_crossings"] = c.border_crossings;
+    j["worst_feature"] = c.worst_feature;
+    const Distortion& d = c.distortion;
+    // nlohmann::json writes non-finite numbers as null, which is what a degenerate map should show.
+    j["symmetric_dirichlet"] = d.symmetric_dirichlet;
+    j["conformal_mean"] = d.conformal_mean;
+    j["conformal_max"] = d.conformal_max;
+    j["area_distortion_mean"] = d.area_mean;
+    j["area_distortion_max"] = d.area_max;
+    j["l2_stretch"] = d.l2_stretch;
+    return j;
+}
+
+}  // namespace ctmap
