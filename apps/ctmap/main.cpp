@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 
+#include "ctmap/certify/certificate.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/io/data_path.h"
@@ -99,6 +101,59 @@ int cmd_convert(const std::string& mesh_path, const std::string& out_path) {
     return kExitOk;
 }
 
+/// `ctmap check`: the validity certificate of any OBJ with UVs, so maps made by other tools can
+/// be checked too (issue 4). Feature UVs follow `image_to_uv` on the resolved pixels, the rule
+/// `ctmap map` writes with, so "exact" is bitwise. Exit 0 valid, 1 invalid.
+int cmd_check(const std::string& obj_path, const std::string& features_path, const std::string& image_arg,
+              bool as_json) {
+    const TexturedMesh tm = read_textured_obj(obj_path);
+    if (tm.uvs.empty() || tm.uv_faces.size() != tm.mesh.faces.size())
+        throw BadInput(obj_path, "no texture coordinates (`vt` and `f v/vt`): there is no map to check");
+    FeatureSet fs = read_features(features_path);
+    int w = 0, h = 0;
+    resolve_image(fs, image_arg, w, h);
+    check_features_on_mesh(fs, tm.mesh, obj_path);
+    Eigen::AlignedBox3d box;
+    for (const Vec3& p : tm.mesh.positions) box.extend(p);
+    std::vector<int> fv;
+    std::vector<Vec2> fuv;
+    for (const Feature& f : fs.features) {
+        int v = f.vertex;
+        if (v < 0) {  // a 3D point: `ctmap map` snapped it to a vertex or inserted one there
+            double best = std::numeric_limits<double>::infinity();
+            for (int u = 0; u < tm.mesh.num_vertices(); ++u)
+                if (const double d = (tm.mesh.positions[u] - *f.point).norm(); d < best) best = d, v = u;
+            if (!(best <= 1e-6 * box.diagonal().norm()))
+                throw BadInput(features_path, "feature \"" + f.name + "\" is a 3D point with no vertex of " +
+                                                  obj_path + " at it: was this OBJ made from these features?");
+        }
+        fv.push_back(v);
+        fuv.push_back(image_to_uv(f.image, w, h));
+    }
+    const Certificate c = certify(tm, fv, fuv);
+    if (as_json) {
+        std::cout << certificate_to_json(c).dump(2) << "\n";
+    } else {
+        const Distortion& d = c.distortion;
+        std::cout << obj_path << ": " << (c.valid ? "valid" : "INVALID") << " (" << c.triangles << " triangles, "
+                  << fv.size() << " features" << (c.mirrored ? ", mirrored" : "") << ")\n"
+                  << "  flipped " << c.flipped << ", degenerate " << c.degenerate << ", feature error "
+                  << c.feature_max_error
+                  << (c.worst_feature >= 0 ? " (feature \"" + fs.features[c.worst_feature].name + "\")" : "")
+                  << ", border " << (c.border_simple ? "simple" : "NOT simple (" + std::to_string(c.border_crossings) + " crossings)")
+                  << "\n"
+                  << "  distortion: symmetric Dirichlet " << d.symmetric_dirichlet << ", conformal mean "
+                  << d.conformal_mean << " max " << d.conformal_max << ", area mean " << d.area_mean << " max "
+                  << d.area_max << ", L2 stretch " << d.l2_stretch << "\n";
+        if (!c.bad_faces.empty()) {
+            std::cout << "  bad UV faces:";
+            for (int f : c.bad_faces) std::cout << " " << f;
+            std::cout << "\n";
+        }
+    }
+    return c.valid ? kExitOk : kExitInvalid;
+}
+
 /// The shipped example: nefertiti.off with the project's features on astronaut.png.
 /// Until `ctmap map` lands (issue 4) the demo checks the example inputs and writes the mesh and
 /// its topology report; the map itself is added to it by that issue.
@@ -152,6 +207,12 @@ int run(int argc, char** argv) {
     convert->add_option("MESH", mesh_path, "input mesh file")->required();
     convert->add_option("-o,--output", out_path, "output file, .obj or .glb")->required();
 
+    auto* check = app.add_subcommand("check", "Certify a texture map (OBJ with UVs): exit 0 valid, 1 invalid");
+    check->add_option("OBJ", mesh_path, "textured OBJ (`vt` and `f v/vt`)")->required();
+    check->add_option("--features", features_path, "features.json (DESIGN §4)")->required();
+    check->add_option("--image", image_arg, "texture image (PNG/JPEG); overrides the features file's \"image\"");
+    check->add_flag("--json", as_json, "print the certificate as JSON");
+
     std::string demo_out = "ctmap-demo";
     auto* demo = app.add_subcommand("demo", "Run ctmap on the shipped example (nefertiti + astronaut)");
     demo->add_option("--out", demo_out, "output folder")->capture_default_str();
@@ -165,6 +226,7 @@ int run(int argc, char** argv) {
     if (*info) return cmd_info(mesh_path, as_json);
     if (*validate) return cmd_validate(mesh_path, features_path, image_arg);
     if (*convert) return cmd_convert(mesh_path, out_path);
+    if (*check) return cmd_check(mesh_path, features_path, image_arg, as_json);
     if (*demo) return cmd_demo(demo_out);
     return kExitBadInput;
 }
