@@ -15,6 +15,12 @@ struct Expected {
     bool disc, closed;
 };
 
+/// Readable test names in ctest and failure reports, instead of the struct's raw bytes.
+void PrintTo(const Expected& e, std::ostream* os) {
+    *os << e.file << " (" << e.vertices << " vertices, " << e.faces << " faces"
+        << (e.disc ? ", disc" : "") << (e.closed ? ", closed" : "") << ")";
+}
+
 class InfoOnRealMeshes : public ::testing::TestWithParam<Expected> {};
 
 TEST_P(InfoOnRealMeshes, CountsMatchTheDataSheet) {

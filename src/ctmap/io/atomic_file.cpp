@@ -18,6 +18,7 @@ AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
     const fs::path dir = t.has_parent_path() ? t.parent_path() : fs::path(".");
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) throw BadInput(target_, "the output folder '" + dir.string() + "' does not exist");
+    if (fs::is_directory(t, ec)) throw BadInput(target_, "the output path is a folder; name a file");
     temp_ = (dir / ("." + t.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
                     std::to_string(counter++)))
                 .string();
@@ -48,7 +49,14 @@ std::string OutputSet::add(const std::string& target) {
 }
 
 void OutputSet::commit_all() {
-    for (AtomicFile& f : files_) f.commit();
+    std::size_t done = 0;
+    try {
+        for (; done < files_.size(); ++done) files_[done].commit();
+    } catch (...) {
+        std::error_code ec;  // all or nothing: take back the outputs already renamed into place
+        for (std::size_t i = 0; i < done; ++i) std::filesystem::remove(files_[i].target(), ec);
+        throw;
+    }
 }
 
 void write_text_file(const std::string& path, const std::string& content) {

@@ -11,6 +11,8 @@ namespace ctmap {
 /// temporary; `commit()` renames it onto the target.
 class AtomicFile {
 public:
+    /// Chooses the temporary `.<name>.tmp<pid>_<n>` beside `target` (nothing is created yet).
+    /// \throw BadInput if `target` names no file, is a folder, or its folder does not exist.
     explicit AtomicFile(std::string target);
     ~AtomicFile();
     AtomicFile(const AtomicFile&) = delete;
@@ -33,7 +35,11 @@ private:
 class OutputSet {
 public:
     /// Registers an output and returns the temporary path to write it to.
+    /// \throw BadInput as AtomicFile's constructor.
     std::string add(const std::string& target);
+    /// Renames every temporary onto its target, in order. If one rename fails, the outputs
+    /// already renamed are removed again, so the set appears whole or not at all.
+    /// \throw InternalError if a rename fails.
     void commit_all();
 
 private:

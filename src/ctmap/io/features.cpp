@@ -76,6 +76,10 @@ FeatureSet parse_features(const std::string& text, const std::string& path) {
         doc = json::parse(text);
     } catch (const json::parse_error& e) {
         throw BadInput(path, std::string("not valid JSON: ") + e.what());
+    } catch (const json::out_of_range& e) {  // a number such as 1e999 that no double holds
+        throw BadInput(path, std::string("a number is out of range (too large for a double): ") + e.what());
+    } catch (const json::exception& e) {
+        throw BadInput(path, std::string("not valid JSON: ") + e.what());
     }
     if (!doc.is_object()) throw BadInput(path, "the features file must hold a JSON object with a \"features\" array");
 

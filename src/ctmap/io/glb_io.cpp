@@ -39,6 +39,15 @@ std::string mime_of(const std::string& path, const std::vector<unsigned char>& b
     throw BadInput(path, "the texture for a glTF file must be a PNG or JPEG");
 }
 
+/// `p` as glTF's 32-bit floats. \throw BadInput if a coordinate does not fit in a float.
+Eigen::Vector3f float_position(const Vec3& p, int vertex, const std::string& path) {
+    const Eigen::Vector3f f = p.cast<float>();
+    if (!f.allFinite())
+        throw BadInput(path, "vertex " + std::to_string(vertex) + " has a coordinate out of the range of the " +
+                                 "32-bit floats glTF stores (|x| > 3.4e38); scale the mesh or write .obj");
+    return f;
+}
+
 }  // namespace
 
 void write_glb(const TexturedMesh& tm, const std::string& path, const std::string& image, OutputSet& outputs) {
@@ -55,7 +64,7 @@ void write_glb(const TexturedMesh& tm, const std::string& path, const std::strin
             const int t = has_uv ? tm.uv_faces[f][k] : -1;
             auto [it, fresh] = vertex_of.emplace(std::make_pair(v, t), std::uint32_t(pos.size() / 3));
             if (fresh) {
-                const Eigen::Vector3f p = tm.mesh.positions[v].cast<float>();
+                const Eigen::Vector3f p = float_position(tm.mesh.positions[v], v, path);
                 pos.insert(pos.end(), {p.x(), p.y(), p.z()});
                 box.extend(p);
                 if (has_uv) uv.insert(uv.end(), {float(tm.uvs[t].x()), float(1.0 - tm.uvs[t].y())});
@@ -147,13 +156,23 @@ void write_glb(const TexturedMesh& mesh, const std::string& path, const std::str
 
 namespace {
 
+/// The buffer view `index` of `m`, checked to lie inside its buffer.
+const tinygltf::BufferView& checked_view(const tinygltf::Model& m, int index, const std::string& path) {
+    if (index < 0 || index >= int(m.bufferViews.size())) throw BadInput(path, "a buffer view index is out of range");
+    const tinygltf::BufferView& v = m.bufferViews[index];
+    if (v.buffer < 0 || v.buffer >= int(m.buffers.size()) ||
+        v.byteOffset + v.byteLength > m.buffers[v.buffer].data.size())
+        throw BadInput(path, "buffer view " + std::to_string(index) + " runs past its buffer");
+    return v;
+}
+
 template <class T>
 std::vector<T> read_accessor(const tinygltf::Model& m, int index, int ctype, int type, const std::string& path) {
     if (index < 0 || index >= int(m.accessors.size())) throw BadInput(path, "missing accessor");
     const tinygltf::Accessor& a = m.accessors[index];
     if (a.componentType != ctype || a.type != type || a.bufferView < 0)
         throw BadInput(path, "unsupported accessor layout (ctmap reads what it writes: float positions/UVs, uint32 indices)");
-    const tinygltf::BufferView& v = m.bufferViews[a.bufferView];
+    const tinygltf::BufferView& v = checked_view(m, a.bufferView, path);
     const int n = tinygltf::GetNumComponentsInType(type);
     const std::size_t stride = v.byteStride ? v.byteStride : n * sizeof(T);
     const auto& data = m.buffers[v.buffer].data;
@@ -166,15 +185,36 @@ std::vector<T> read_accessor(const tinygltf::Model& m, int index, int ctype, int
     return out;
 }
 
+/// The first material's base-colour texture, if its image is embedded in a buffer view.
+GlbTexture embedded_texture(const tinygltf::Model& m, const std::string& path) {
+    GlbTexture t;
+    if (m.materials.empty()) return t;
+    const int tex = m.materials[0].pbrMetallicRoughness.baseColorTexture.index;
+    if (tex < 0 || tex >= int(m.textures.size())) return t;
+    const int src = m.textures[tex].source;
+    if (src < 0 || src >= int(m.images.size()) || m.images[src].bufferView < 0) return t;
+    const tinygltf::Image& img = m.images[src];
+    const tinygltf::BufferView& v = checked_view(m, img.bufferView, path);
+    const auto& data = m.buffers[v.buffer].data;
+    t.mime_type = img.mimeType;
+    t.bytes.assign(data.begin() + v.byteOffset, data.begin() + v.byteOffset + v.byteLength);
+    return t;
+}
+
+bool has_glb_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower((unsigned char)c));
+    return ext == ".glb";
+}
+
 }  // namespace
 
-TexturedMesh read_glb(const std::string& path) {
+TexturedMesh read_glb(const std::string& path, GlbTexture* texture) {
     tinygltf::Model m;
     tinygltf::TinyGLTF gltf;
     std::string err, warn;
-    const bool ok = path.size() > 4 && path.substr(path.size() - 4) == ".glb"
-                        ? gltf.LoadBinaryFromFile(&m, &err, &warn, path)
-                        : gltf.LoadASCIIFromFile(&m, &err, &warn, path);
+    const bool ok = has_glb_extension(path) ? gltf.LoadBinaryFromFile(&m, &err, &warn, path)
+                                            : gltf.LoadASCIIFromFile(&m, &err, &warn, path);
     if (!ok) throw BadInput(path, "not a readable glTF file: " + err);
     if (m.meshes.empty() || m.meshes[0].primitives.empty()) throw BadInput(path, "no mesh in the glTF file");
     const tinygltf::Primitive& p = m.meshes[0].primitives[0];
@@ -185,16 +225,18 @@ TexturedMesh read_glb(const std::string& path) {
     for (std::size_t i = 0; i < pos.size(); i += 3) tm.mesh.positions.emplace_back(pos[i], pos[i + 1], pos[i + 2]);
     for (std::size_t i = 0; i + 2 < idx.size(); i += 3) {
         Tri t{int(idx[i]), int(idx[i + 1]), int(idx[i + 2])};
-        for (int v : t)
-            if (v >= tm.mesh.num_vertices()) throw BadInput(path, "index out of range");
+        for (std::uint32_t k = 0; k < 3; ++k)
+            if (idx[i + k] >= std::uint32_t(tm.mesh.num_vertices())) throw BadInput(path, "index out of range");
         tm.mesh.faces.push_back(t);
     }
     if (p.attributes.count("TEXCOORD_0")) {
         const auto uv = read_accessor<float>(m, p.attributes.at("TEXCOORD_0"), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, path);
+        if (uv.size() / 2 != pos.size() / 3) throw BadInput(path, "TEXCOORD_0 and POSITION have different counts");
         for (std::size_t i = 0; i < uv.size(); i += 2) tm.uvs.emplace_back(uv[i], 1.0 - double(uv[i + 1]));
         tm.uv_faces = tm.mesh.faces;
     }
     tm.chart.assign(tm.mesh.faces.size(), 0);
+    if (texture) *texture = embedded_texture(m, path);
     return tm;
 }
 

@@ -2,6 +2,7 @@
 /// \file glb_io.h
 /// Binary glTF output (tinygltf) with the texture embedded: one file three.js and Blender open.
 #include <string>
+#include <vector>
 
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/mesh.h"
@@ -13,15 +14,25 @@ namespace ctmap {
 /// vertex is split where its corners carry different UVs; glTF's v runs downwards, so v is
 /// flipped (DESIGN §3). Positions and UVs are stored as 32-bit floats, as glTF requires.
 /// The file is registered in `outputs` and appears only when the caller commits it.
-/// \throw BadInput if `image` cannot be read; InternalError if the file cannot be written.
+/// \throw BadInput if `image` cannot be read or is not a PNG/JPEG, or if a position does not fit
+///        in a 32-bit float; InternalError if the file cannot be written.
 void write_glb(const TexturedMesh& mesh, const std::string& path, const std::string& image, OutputSet& outputs);
 
 /// Same, committed at once.
 void write_glb(const TexturedMesh& mesh, const std::string& path, const std::string& image = "");
 
+/// The base-colour texture embedded in a glTF file, as stored: the encoded PNG or JPEG bytes.
+struct GlbTexture {
+    std::string mime_type;             ///< "image/png" or "image/jpeg"; empty if there is no texture
+    std::vector<unsigned char> bytes;  ///< the image file's bytes, as embedded
+};
+
 /// Reads back the first primitive of a glTF/GLB file: positions, indices and TEXCOORD_0 (in OBJ's
 /// convention, v flipped back), one UV per corner. Meant for tests and `ctmap check`.
-/// \throw BadInput naming the file if it cannot be loaded or has no indexed triangle primitive.
-TexturedMesh read_glb(const std::string& path);
+/// If `texture` is given, it receives the first material's base-colour texture when that is
+/// embedded in the file's buffer (and is cleared otherwise).
+/// \throw BadInput naming the file if it cannot be loaded, has no indexed triangle primitive, or
+///        an accessor or index points outside its buffer.
+TexturedMesh read_glb(const std::string& path, GlbTexture* texture = nullptr);
 
 }  // namespace ctmap

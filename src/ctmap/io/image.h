@@ -17,7 +17,10 @@ struct Image {
 };
 
 /// Reads a PNG or JPEG file with all its pixels, as RGBA (4 channels).
-/// \throw BadInput naming the file if it is missing, empty, not a PNG/JPEG, or truncated.
+/// \pre `path` names a PNG or JPEG file.
+/// \throw BadInput naming the file if it is missing, a folder, empty, not a PNG/JPEG (by its
+///        signature), truncated or corrupt, or larger than 2^28 pixels (checked from the header,
+///        before any pixel is allocated).
 Image read_image(const std::string& path);
 
 /// Writes `image` as PNG to `path` (atomically: a temporary renamed into place).

@@ -123,6 +123,7 @@ int resolve_index(long long i, std::size_t count, const char* what, const LineRe
 TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw BadInput(path, "no such file");
+    if (fs::is_directory(path, ec)) throw BadInput(path, "is a directory, not an OBJ file");
     if (fs::file_size(path, ec) == 0) throw BadInput(path, "the file is empty");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw BadInput(path, "cannot be opened for reading");

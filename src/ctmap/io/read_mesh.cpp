@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/mesh_diagnosis.h"
 
 namespace ctmap {
 namespace {
@@ -60,9 +61,8 @@ void triangulate_polygon(const std::string& path, std::size_t face_index,
     }
 }
 
-}  // namespace
-
-TriMesh read_mesh(const std::string& path) {
+/// Checks that `path` is a readable, non-empty file with a mesh extension; returns the extension.
+std::string check_mesh_file(const std::string& path) {
     namespace fs = std::filesystem;
     std::error_code ec;
     if (!fs::exists(path, ec)) throw BadInput(path, "no such file");
@@ -75,18 +75,48 @@ TriMesh read_mesh(const std::string& path) {
     const std::string ext = lower_extension(path);
     if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
         throw BadInput(path, "unknown mesh format '" + ext + "' (use .off, .obj, .ply or .stl)");
+    return ext;
+}
 
-    std::vector<Point> points;
-    std::vector<std::vector<std::size_t>> polygons;
+/// Reads the polygon soup with CGAL; when CGAL fails, says why (mesh_diagnosis.h).
+void read_soup(const std::string& path, const std::string& ext, std::vector<Point>& points,
+               std::vector<std::vector<std::size_t>>& polygons) {
+    check_before_reading(path, ext);  // what CGAL would trust blindly (mesh_diagnosis.h)
+    const std::string what = "not a valid " + ext.substr(1) + " file: ";
     bool ok = false;
     try {
         ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
     } catch (const std::exception& e) {
-        throw BadInput(path, std::string("not a valid ") + ext.substr(1) + " file (" + e.what() + ")");
+        const std::string why = diagnose_mesh_file(path, ext);
+        throw BadInput(path, what + (why.empty() ? std::string("the reader failed (") + e.what() + ")" : why));
     }
-    if (!ok) throw BadInput(path, "not a valid " + ext.substr(1) + " file (the reader stopped on malformed data)");
+    if (!ok) {
+        const std::string why = diagnose_mesh_file(path, ext);
+        throw BadInput(path, what + (why.empty() ? "the reader stopped on malformed data" : why));
+    }
     if (points.empty()) throw BadInput(path, "the mesh has no vertices");
     if (polygons.empty()) throw BadInput(path, "the mesh has no faces");
+}
+
+/// Checks one polygon of the soup: at least 3 corners, every index in range.
+void check_polygon(const std::string& path, std::size_t f, const std::vector<std::size_t>& poly, std::size_t num_points) {
+    if (poly.size() < 3)
+        throw BadInput(path, "face " + std::to_string(f) + " has " + std::to_string(poly.size()) +
+                                 " corners; a face needs at least 3");
+    for (std::size_t v : poly)
+        if (v >= num_points)
+            throw BadInput(path, "face " + std::to_string(f) + " uses vertex " + std::to_string(v) +
+                                     ", which is out of range (the file has " + std::to_string(num_points) +
+                                     " vertices)");
+}
+
+}  // namespace
+
+TriMesh read_mesh(const std::string& path) {
+    const std::string ext = check_mesh_file(path);
+    std::vector<Point> points;
+    std::vector<std::vector<std::size_t>> polygons;
+    read_soup(path, ext, points, polygons);
 
     TriMesh mesh;
     mesh.positions.reserve(points.size());
@@ -98,16 +128,8 @@ TriMesh read_mesh(const std::string& path) {
     }
     mesh.faces.reserve(polygons.size());
     for (std::size_t f = 0; f < polygons.size(); ++f) {
-        const auto& poly = polygons[f];
-        if (poly.size() < 3)
-            throw BadInput(path, "face " + std::to_string(f) + " has " + std::to_string(poly.size()) +
-                                     " corners; a face needs at least 3");
-        for (std::size_t v : poly)
-            if (v >= points.size())
-                throw BadInput(path, "face " + std::to_string(f) + " uses vertex " + std::to_string(v) +
-                                         ", but the file has only " + std::to_string(points.size()) +
-                                         " vertices");
-        triangulate_polygon(path, f, poly, mesh.positions, mesh.faces);
+        check_polygon(path, f, polygons[f], points.size());
+        triangulate_polygon(path, f, polygons[f], mesh.positions, mesh.faces);
     }
     return mesh;
 }
