@@ -48,29 +48,50 @@ Eigen::Vector3f float_position(const Vec3& p, int vertex, const std::string& pat
     return f;
 }
 
+/// glTF's vertices: one per distinct (vertex, uv) corner pair, since glTF has one UV per vertex.
+/// glTF vertex i is input vertex i with the UV of its first corner, so the input order is kept
+/// (DESIGN §3); the copies of a vertex whose corners carry other UVs come after the first |V|.
+struct GlbVertices {
+    std::vector<std::pair<int, int>> source;  ///< (input vertex, uv index or -1) per glTF vertex
+    std::vector<std::uint32_t> indices;       ///< three per face
+};
+
+GlbVertices split_vertices(const TexturedMesh& tm) {
+    const bool has_uv = !tm.uvs.empty();
+    GlbVertices out;
+    for (int v = 0; v < tm.mesh.num_vertices(); ++v) out.source.emplace_back(v, -1);
+    if (has_uv)
+        for (std::size_t f = tm.mesh.faces.size(); f-- > 0;)  // backwards: the first corner wins
+            for (int k = 3; k-- > 0;) out.source[tm.mesh.faces[f][k]].second = tm.uv_faces[f][k];
+    std::map<std::pair<int, int>, std::uint32_t> vertex_of;
+    for (std::size_t i = 0; i < out.source.size(); ++i) vertex_of.emplace(out.source[i], std::uint32_t(i));
+    out.indices.reserve(tm.mesh.faces.size() * 3);
+    for (std::size_t f = 0; f < tm.mesh.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const std::pair<int, int> corner(tm.mesh.faces[f][k], has_uv ? tm.uv_faces[f][k] : -1);
+            auto [it, fresh] = vertex_of.emplace(corner, std::uint32_t(out.source.size()));
+            if (fresh) out.source.push_back(corner);
+            out.indices.push_back(it->second);
+        }
+    return out;
+}
+
 }  // namespace
 
 void write_glb(const TexturedMesh& tm, const std::string& path, const std::string& image, OutputSet& outputs) {
     const bool has_uv = !tm.uvs.empty();
-    // One glTF vertex per distinct (position, uv) pair.
-    std::map<std::pair<int, int>, std::uint32_t> vertex_of;
+    const GlbVertices vertices = split_vertices(tm);
+    const std::vector<std::uint32_t>& idx = vertices.indices;
     std::vector<float> pos, uv;
-    std::vector<std::uint32_t> idx;
-    idx.reserve(tm.mesh.faces.size() * 3);
     Eigen::AlignedBox3f box;
-    for (std::size_t f = 0; f < tm.mesh.faces.size(); ++f)
-        for (int k = 0; k < 3; ++k) {
-            const int v = tm.mesh.faces[f][k];
-            const int t = has_uv ? tm.uv_faces[f][k] : -1;
-            auto [it, fresh] = vertex_of.emplace(std::make_pair(v, t), std::uint32_t(pos.size() / 3));
-            if (fresh) {
-                const Eigen::Vector3f p = float_position(tm.mesh.positions[v], v, path);
-                pos.insert(pos.end(), {p.x(), p.y(), p.z()});
-                box.extend(p);
-                if (has_uv) uv.insert(uv.end(), {float(tm.uvs[t].x()), float(1.0 - tm.uvs[t].y())});
-            }
-            idx.push_back(it->second);
-        }
+    for (auto [v, t] : vertices.source) {
+        const Eigen::Vector3f p = float_position(tm.mesh.positions[v], v, path);
+        pos.insert(pos.end(), {p.x(), p.y(), p.z()});
+        box.extend(p);
+        if (!has_uv) continue;
+        const Vec2 w = t >= 0 ? tm.uvs[t] : Vec2(0, 0);  // a vertex on no face has no UV
+        uv.insert(uv.end(), {float(w.x()), float(1.0 - w.y())});
+    }
 
     tinygltf::Model m;
     m.asset.version = "2.0";

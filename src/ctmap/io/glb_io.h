@@ -11,7 +11,8 @@ namespace ctmap {
 
 /// Writes `mesh` as a binary glTF to `path`, with the PNG or JPEG file `image` embedded as the
 /// base-colour texture (untextured when `image` is empty). glTF stores one UV per vertex, so a
-/// vertex is split where its corners carry different UVs; glTF's v runs downwards, so v is
+/// vertex is split where its corners carry different UVs: glTF vertex i is input vertex i (the
+/// input order is kept, DESIGN §3) and the extra copies follow. glTF's v runs downwards, so v is
 /// flipped (DESIGN §3). Positions and UVs are stored as 32-bit floats, as glTF requires.
 /// The file is registered in `outputs` and appears only when the caller commits it.
 /// \throw BadInput if `image` cannot be read or is not a PNG/JPEG, or if a position does not fit
@@ -29,6 +30,8 @@ struct GlbTexture {
 
 /// Reads back the first primitive of a glTF/GLB file: positions, indices and TEXCOORD_0 (in OBJ's
 /// convention, v flipped back), one UV per corner. Meant for tests and `ctmap check`.
+/// The flip back is one double subtraction, 1 - stored: it gives back the stored float exactly
+/// when that is 0 or at least 2^-30 (u, and v not within 1e-9 of 1), and within 2^-54 otherwise.
 /// If `texture` is given, it receives the first material's base-colour texture when that is
 /// embedded in the file's buffer (and is cleared otherwise).
 /// \throw BadInput naming the file if it cannot be loaded, has no indexed triangle primitive, or
