@@ -1,0 +1,437 @@
+#include "ctmap/refine/relax.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "ctmap/certify/certificate.h"
+#include "ctmap/embed/mean_value_embedding.h"
+#include "ctmap/errors.h"
+
+namespace ctmap {
+namespace {
+
+/// The ordered one-ring of every vertex, from the faces' orientation: for face (v, a, b), b
+/// follows a counter-clockwise around v. A border vertex's ring starts at the neighbour across
+/// its outgoing border edge (v1) and ends at the one across its incoming border edge (vn).
+struct Rings {
+    std::vector<int> offset;  // CSR into nbr
+    std::vector<int> nbr;
+    std::vector<char> border;
+    std::vector<int> face_offset;  // CSR into faces
+    std::vector<int> faces;
+
+    explicit Rings(const TriMesh& m) {
+        const int nv = m.num_vertices();
+        std::vector<int> deg(nv + 1, 0);
+        for (const Tri& t : m.faces)
+            for (int v : t) ++deg[v + 1];
+        face_offset.assign(nv + 1, 0);
+        for (int v = 0; v < nv; ++v) face_offset[v + 1] = face_offset[v] + deg[v + 1];
+        faces.resize(face_offset[nv]);
+        std::vector<int> fill(face_offset.begin(), face_offset.end() - 1);
+        for (int f = 0; f < m.num_faces(); ++f)
+            for (int v : m.faces[f]) faces[fill[v]++] = f;
+        offset.assign(nv + 1, 0);
+        border.assign(nv, 0);
+        nbr.reserve(face_offset[nv] + nv);
+        std::vector<std::pair<int, int>> pairs;  // (a, b) per face (v, a, b)
+        for (int v = 0; v < nv; ++v) {
+            pairs.clear();
+            for (int i = face_offset[v]; i < face_offset[v + 1]; ++i) {
+                const Tri& t = m.faces[faces[i]];
+                const int k = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+                pairs.push_back({t[(k + 1) % 3], t[(k + 2) % 3]});
+            }
+            offset[v] = int(nbr.size());
+            if (pairs.empty()) {
+                offset[v + 1] = int(nbr.size());
+                continue;
+            }
+            int start = pairs[0].first;
+            for (const auto& [a, b] : pairs) {
+                bool has_pred = false;
+                for (const auto& q : pairs) has_pred |= q.second == a;
+                if (!has_pred) {
+                    start = a;
+                    border[v] = 1;
+                    break;
+                }
+            }
+            int cur = start;
+            for (std::size_t s = 0; s < pairs.size(); ++s) {
+                nbr.push_back(cur);
+                int next = -1, count = 0;
+                for (const auto& [a, b] : pairs)
+                    if (a == cur) next = b, ++count;
+                if (count != 1) throw InternalError("relax: the mesh is not manifold at vertex " + std::to_string(v));
+                cur = next;
+            }
+            if (border[v]) nbr.push_back(cur);
+            else if (cur != start) throw InternalError("relax: the mesh is not manifold at vertex " + std::to_string(v));
+            offset[v + 1] = int(nbr.size());
+        }
+    }
+    int begin(int v) const { return offset[v]; }
+    int end(int v) const { return offset[v + 1]; }
+};
+
+/// Uniform grid of the UV border edges, updated as border vertices move, so that checking a
+/// moved vertex's two border edges costs O(1) on average instead of O(border). An edge whose box
+/// covers too many cells (it grew long, or the map is far from where the grid was sized) goes to
+/// a list that every query scans; a query that large scans every edge. So the grid stays correct
+/// and bounded whatever the map does.
+class SegmentGrid {
+public:
+    SegmentGrid(double cell, const std::vector<Vec2>& uv, const std::vector<std::array<int, 2>>& edges)
+        : cell_(cell), uv_(uv), edges_(edges), stamp_(edges.size(), 0), big_flag_(edges.size(), 0) {
+        for (int e = 0; e < int(edges.size()); ++e) insert(e);
+    }
+    void insert(int e) {
+        const Vec2 &a = uv_[edges_[e][0]], &b = uv_[edges_[e][1]];
+        if (!small(a, b)) {
+            big_flag_[e] = 1;
+            big_.push_back(e);
+            return;
+        }
+        big_flag_[e] = 0;
+        for_cells(a, b, [&](std::uint64_t key) { cells_[key].push_back(e); });
+    }
+    /// \pre the edge's ends are where they were when it was inserted.
+    void remove(int e) {
+        if (big_flag_[e]) {
+            big_.erase(std::find(big_.begin(), big_.end(), e));
+            return;
+        }
+        for_cells(uv_[edges_[e][0]], uv_[edges_[e][1]], [&](std::uint64_t key) {
+            auto& v = cells_[key];
+            v.erase(std::find(v.begin(), v.end(), e));
+        });
+    }
+    /// Calls f(edge) once for every edge that may meet the box of [a, b] (and maybe others).
+    template <class F>
+    void query(const Vec2& a, const Vec2& b, F&& f) {
+        if (!small(a, b)) {
+            for (int e = 0; e < int(edges_.size()); ++e) f(e);
+            return;
+        }
+        ++tick_;
+        auto visit = [&](int e) {
+            if (stamp_[e] != tick_) {
+                stamp_[e] = tick_;
+                f(e);
+            }
+        };
+        for (int e : big_) visit(e);
+        for_cells(a, b, [&](std::uint64_t key) {
+            auto it = cells_.find(key);
+            if (it == cells_.end()) return;
+            for (int e : it->second) visit(e);
+        });
+    }
+
+private:
+    static constexpr double kMaxCells = 64;
+    static constexpr double kMaxIndex = 1e9;  // cell indices must fit in 32 bits
+
+    bool small(const Vec2& a, const Vec2& b) const {
+        const double x0 = std::min(a.x(), b.x()) / cell_, x1 = std::max(a.x(), b.x()) / cell_;
+        const double y0 = std::min(a.y(), b.y()) / cell_, y1 = std::max(a.y(), b.y()) / cell_;
+        if (!(std::abs(x0) < kMaxIndex && std::abs(x1) < kMaxIndex && std::abs(y0) < kMaxIndex &&
+              std::abs(y1) < kMaxIndex))
+            return false;  // also false for NaN
+        return (std::floor(x1) - std::floor(x0) + 1) * (std::floor(y1) - std::floor(y0) + 1) <= kMaxCells;
+    }
+    template <class F>
+    void for_cells(const Vec2& a, const Vec2& b, F&& f) {
+        const std::int64_t x0 = cell_index(std::min(a.x(), b.x())), x1 = cell_index(std::max(a.x(), b.x()));
+        const std::int64_t y0 = cell_index(std::min(a.y(), b.y())), y1 = cell_index(std::max(a.y(), b.y()));
+        for (std::int64_t x = x0; x <= x1; ++x)
+            for (std::int64_t y = y0; y <= y1; ++y)
+                f((std::uint64_t(std::uint32_t(std::int32_t(x))) << 32) | std::uint32_t(std::int32_t(y)));
+    }
+    std::int64_t cell_index(double c) const { return std::int64_t(std::floor(c / cell_)); }
+
+    double cell_;
+    const std::vector<Vec2>& uv_;
+    const std::vector<std::array<int, 2>>& edges_;
+    std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+    std::vector<unsigned> stamp_;
+    std::vector<char> big_flag_;
+    std::vector<int> big_;
+    unsigned tick_ = 0;
+};
+
+int sign_of(double x) { return (x > 0) - (x < 0); }
+
+/// Segments [s, p] and [s, q] share the end s; they overlap beyond it iff collinear and
+/// pointing the same way (exact: orientation predicate, signs of coordinate differences).
+bool overlap_at_shared_end(const Vec2& s, const Vec2& p, const Vec2& q) {
+    return orientation_2d(s, p, q) == 0 && sign_of(p.x() - s.x()) == sign_of(q.x() - s.x()) &&
+           sign_of(p.y() - s.y()) == sign_of(q.y() - s.y());
+}
+
+}  // namespace
+
+std::vector<double> border_mean_value_weights(const Vec3& center, const std::vector<Vec3>& fan) {
+    const std::size_t n = fan.size();
+    if (n < 3) return {};
+    std::vector<Vec3> circuit(fan);
+    for (std::size_t j = 1; j + 1 < n; ++j) circuit.push_back(2.0 * center - fan[j]);
+    std::vector<double> lambda;
+    try {
+        lambda = mean_value_weights(center, circuit);
+    } catch (const std::invalid_argument&) {
+        return {};
+    }
+    double virtual_sum = 0;
+    for (std::size_t j = n; j < circuit.size(); ++j) virtual_sum += lambda[j];
+    // D = 1 - 2 sum(lambda') is positive when the real half of the circuit outweighs the
+    // virtual one, and may be small or negative at a sharp or strongly reflex border vertex. The
+    // form is exact either way; what matters is its conditioning: sum |mu| is the factor by which
+    // the target amplifies errors in the neighbours' UVs (1 for a convex combination). Beyond 20
+    // the vertex is better left where it is.
+    const double D = 1.0 - 2.0 * virtual_sum;
+    if (!(std::abs(D) > 1e-12)) return {};
+    std::vector<double> mu(n);
+    mu[0] = lambda[0] / D;
+    mu[n - 1] = lambda[n - 1] / D;
+    for (std::size_t j = 1; j + 1 < n; ++j) mu[j] = (lambda[j] - lambda[n + j - 1]) / D;
+    double amplification = 0;
+    for (double x : mu) amplification += std::abs(x);
+    if (!(amplification <= 20)) return {};
+    return mu;
+}
+
+RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<int>& fixed,
+                 const RelaxOptions& options) {
+    const int nv = mesh.num_vertices();
+    if (int(uv.size()) != nv)
+        throw InternalError("relax: " + std::to_string(uv.size()) + " UVs for " + std::to_string(nv) + " vertices");
+    RelaxStats stats;
+    if (mesh.faces.empty()) return stats;
+    const Rings rings(mesh);
+
+    // The map's orientation, and the precondition that it is valid.
+    int sigma = 0;
+    for (int f = 0; f < mesh.num_faces(); ++f) {
+        const Tri& t = mesh.faces[f];
+        const int s = orientation_2d(uv[t[0]], uv[t[1]], uv[t[2]]);
+        if (sigma == 0) sigma = s;
+        if (s == 0 || s != sigma)
+            throw InternalError("relax: the map is not valid on entry (UV triangle " + std::to_string(f) + " is " +
+                                (s == 0 ? "degenerate" : "flipped") + ")");
+    }
+
+    // Weights, fixed for the whole run: they depend on the 3D mesh only.
+    std::vector<char> is_fixed(nv, 0);
+    for (int v : fixed)
+        if (v >= 0 && v < nv) is_fixed[v] = 1;
+    std::vector<int> w_offset(nv + 1, 0);
+    std::vector<int> w_nbr;
+    std::vector<double> w_val;
+    std::vector<char> is_free(nv, 0);
+    std::vector<Vec3> ring;
+    for (int v = 0; v < nv; ++v) {
+        w_offset[v] = int(w_nbr.size());
+        if (is_fixed[v] || rings.begin(v) == rings.end(v) || (rings.border[v] && !options.move_border)) {
+            w_offset[v + 1] = int(w_nbr.size());
+            continue;
+        }
+        ring.clear();
+        for (int i = rings.begin(v); i < rings.end(v); ++i) ring.push_back(mesh.positions[rings.nbr[i]]);
+        std::vector<double> w;
+        if (rings.border[v]) {
+            w = border_mean_value_weights(mesh.positions[v], ring);
+        } else {
+            try {
+                w = mean_value_weights(mesh.positions[v], ring);
+            } catch (const std::invalid_argument&) {
+                w.clear();  // degenerate in 3D: no average to move towards; the vertex stays
+            }
+        }
+        if (!w.empty()) {
+            is_free[v] = 1;
+            ++stats.free_vertices;
+            for (int i = rings.begin(v); i < rings.end(v); ++i) {
+                w_nbr.push_back(rings.nbr[i]);
+                w_val.push_back(w[i - rings.begin(v)]);
+            }
+        }
+        w_offset[v + 1] = int(w_nbr.size());
+    }
+
+    // Border edges, one per border vertex: v -> v1 (its outgoing edge in the face order).
+    std::vector<std::array<int, 2>> border_edges;
+    std::vector<int> out_edge(nv, -1);
+    for (int v = 0; v < nv; ++v)
+        if (rings.border[v]) {
+            out_edge[v] = int(border_edges.size());
+            border_edges.push_back({v, rings.nbr[rings.begin(v)]});
+        }
+    auto in_edge = [&](int v) { return out_edge[rings.nbr[rings.end(v) - 1]]; };
+    double mean_len = 0, max_len = 0;
+    for (const auto& e : border_edges) {
+        const double l = (uv[e[0]] - uv[e[1]]).norm();
+        mean_len += l;
+        max_len = std::max(max_len, l);
+    }
+    if (!border_edges.empty()) mean_len /= double(border_edges.size());
+    // Cells about one edge long keep a query to a few cells; a few much longer edges must not
+    // make a query cover thousands of cells.
+    const double cell = std::max({mean_len, max_len / 8, 1e-300});
+    SegmentGrid grid(cell, uv, border_edges);
+
+    // Per face, what the symmetric Dirichlet energy needs of the 3D triangle: its area and the
+    // inverse of its edge matrix in its own plane, [P1 P2]^-1 = [[i00, i01], [0, i11]].
+    struct FaceFrame {
+        double area = 0, i00 = 0, i01 = 0, i11 = 0;
+    };
+    std::vector<FaceFrame> frame(mesh.faces.size());
+    double area3 = 0;
+    for (int f = 0; f < mesh.num_faces(); ++f) {
+        const Tri& t = mesh.faces[f];
+        const Vec3 e1 = mesh.positions[t[1]] - mesh.positions[t[0]], e2 = mesh.positions[t[2]] - mesh.positions[t[0]];
+        const double l1 = e1.norm(), n = e1.cross(e2).norm();
+        if (!(l1 > 0) || !(n > 0)) continue;  // zero area: contributes nothing
+        const double px = e2.dot(e1) / l1, h = n / l1;
+        frame[f] = {0.5 * n, 1 / l1, -px / (l1 * h), 1 / h};
+        area3 += 0.5 * n;
+    }
+    // The energy the certificate reports: with J the unscaled Jacobian of a face and s^2 =
+    // A3 / A2 the scale that brings the UV area A2 to the 3D area A3,
+    //   E = sum A_f |sJ|^2 (1 + 1/det(sJ)^2) = (A3/A2) X + (A2/A3) Y,
+    //   X = sum A_f |J|^2, Y = sum A_f |J|^2 / det(J)^2.
+    // A move of v changes X, Y and A2 only through v's faces, so the guard compares the true
+    // normalized energy before and after in O(degree).
+    struct Sums {
+        double x = 0, y = 0, a2 = 0;
+    };
+    auto face_sums = [&](int f, int v, const Vec2& p, Sums& out) {
+        const FaceFrame& F = frame[f];
+        const Tri& t = mesh.faces[f];
+        const Vec2& a = t[0] == v ? p : uv[t[0]];
+        const Vec2& b = t[1] == v ? p : uv[t[1]];
+        const Vec2& c = t[2] == v ? p : uv[t[2]];
+        const Vec2 q1 = b - a, q2 = c - a;
+        const double cross = q1.x() * q2.y() - q1.y() * q2.x();
+        out.a2 += 0.5 * std::abs(cross);
+        if (F.area == 0) return;
+        const double j00 = q1.x() * F.i00, j10 = q1.y() * F.i00;
+        const double j01 = q1.x() * F.i01 + q2.x() * F.i11, j11 = q1.y() * F.i01 + q2.y() * F.i11;
+        const double fro = j00 * j00 + j01 * j01 + j10 * j10 + j11 * j11;
+        const double det = j00 * j11 - j01 * j10;
+        out.x += F.area * fro;
+        out.y += F.area * fro / (det * det);
+    };
+    auto local_sums = [&](int v, const Vec2& p) {
+        Sums s;
+        for (int i = rings.face_offset[v]; i < rings.face_offset[v + 1]; ++i) face_sums(rings.faces[i], v, p, s);
+        return s;
+    };
+    Sums total;
+    auto energy = [&](const Sums& t) { return area3 / t.a2 * t.x + t.a2 / area3 * t.y; };
+
+    auto triangles_ok = [&](int v, const Vec2& p) {
+        for (int i = rings.face_offset[v]; i < rings.face_offset[v + 1]; ++i) {
+            const Tri& t = mesh.faces[rings.faces[i]];
+            const Vec2& a = t[0] == v ? p : uv[t[0]];
+            const Vec2& b = t[1] == v ? p : uv[t[1]];
+            const Vec2& c = t[2] == v ? p : uv[t[2]];
+            if (orientation_2d(a, b, c) != sigma) return false;
+        }
+        return true;
+    };
+    auto border_ok = [&](int v, const Vec2& p) {
+        const int e_out = out_edge[v], e_in = in_edge(v);
+        const int x1 = border_edges[e_out][1], xn = border_edges[e_in][0];
+        if (overlap_at_shared_end(p, uv[x1], uv[xn])) return false;
+        bool ok = true;
+        for (const int x : {x1, xn}) {
+            grid.query(p, uv[x], [&](int e) {
+                if (!ok || e == e_out || e == e_in) return;
+                const int a = border_edges[e][0], b = border_edges[e][1];
+                if (a == x || b == x) {
+                    if (overlap_at_shared_end(uv[x], p, uv[a == x ? b : a])) ok = false;
+                } else if (segments_intersect_2d(p, uv[x], uv[a], uv[b])) {
+                    ok = false;
+                }
+            });
+            if (!ok) return false;
+        }
+        return true;
+    };
+
+    for (int it = 0; it < options.max_iterations; ++it) {
+        Eigen::AlignedBox2d box;
+        for (const Vec2& p : uv) box.extend(p);
+        const double diag = box.diagonal().norm();
+        if (!(diag > 0)) break;
+        const double negligible = 1e-3 * options.tolerance * diag;
+        if (options.energy_guard) {  // recomputed each sweep so that rounding does not drift
+            total = Sums();
+            for (int f = 0; f < mesh.num_faces(); ++f) face_sums(f, -1, Vec2::Zero(), total);
+        }
+        double max_move = 0;
+        for (int v = 0; v < nv; ++v) {
+            if (!is_free[v]) continue;
+            Vec2 target = Vec2::Zero();
+            for (int i = w_offset[v]; i < w_offset[v + 1]; ++i) target += w_val[i] * uv[w_nbr[i]];
+            const Vec2 d = target - uv[v];
+            if (!(d.norm() > negligible)) continue;
+            double step = 1;
+            bool accepted = false;
+            const Sums old_local = options.energy_guard ? local_sums(v, uv[v]) : Sums();
+            const double e0 = options.energy_guard ? energy(total) : 0;
+            Sums trial;
+            for (int h = 0; h <= options.max_halvings; ++h, step *= 0.5) {
+                const Vec2 p = uv[v] + step * d;
+                if (p == uv[v]) break;
+                if (!triangles_ok(v, p)) continue;
+                if (options.energy_guard) {
+                    const Sums l = local_sums(v, p);
+                    trial = {total.x - old_local.x + l.x, total.y - old_local.y + l.y, total.a2 - old_local.a2 + l.a2};
+                    if (!(energy(trial) <= e0)) {
+                        ++stats.energy_rejections;
+                        continue;
+                    }
+                }
+                if (rings.border[v] && options.check_border && !border_ok(v, p)) {
+                    ++stats.border_rejections;
+                    continue;
+                }
+                if (rings.border[v]) {
+                    grid.remove(out_edge[v]);
+                    grid.remove(in_edge(v));
+                    uv[v] = p;
+                    grid.insert(out_edge[v]);
+                    grid.insert(in_edge(v));
+                } else {
+                    uv[v] = p;
+                }
+                accepted = true;
+                if (options.energy_guard) total = trial;
+                if (h > 0) ++stats.moves_shortened;
+                break;
+            }
+            if (accepted) {
+                ++stats.moves;
+                max_move = std::max(max_move, step * d.norm());
+            } else {
+                ++stats.moves_rejected;
+            }
+        }
+        stats.iterations = it + 1;
+        stats.last_gain = max_move / diag;
+        if (stats.last_gain < options.tolerance) {
+            stats.converged = true;
+            break;
+        }
+    }
+    return stats;
+}
+
+}  // namespace ctmap
