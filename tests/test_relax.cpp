@@ -105,6 +105,9 @@ TEST(Relax, NefertitiLowersDistortionKeepsFeaturesAndNeverFlips) {
               << d1.area_max << "\n"
               << "  L2 stretch " << d0.l2_stretch << " -> " << d1.l2_stretch << "\n";
     EXPECT_LT(d1.symmetric_dirichlet, 0.9 * d0.symmetric_dirichlet);
+    // The guard's energy, kept up to date move by move, is the certificate's measure.
+    EXPECT_NEAR(st.energy_before, d0.symmetric_dirichlet, 1e-10 * d0.symmetric_dirichlet);
+    EXPECT_NEAR(st.energy_after, d1.symmetric_dirichlet, 1e-9 * d1.symmetric_dirichlet);
     EXPECT_LT(d1.conformal_mean, 0.9 * d0.conformal_mean);
     EXPECT_GT(st.moves, 0);
     EXPECT_GT(st.iterations, 1);
@@ -226,6 +229,7 @@ TEST(Relax, WindingStripStaysValid) {
     std::vector<Vec2> uv = uv0;
     RelaxOptions opt;
     opt.max_iterations = 2000;
+    opt.energy_tolerance = 0;  // run to the move tolerance
     const RelaxStats st = relax(m, uv, fixed, opt);
     const Certificate after = certify(TexturedMesh::with_vertex_uvs(m, uv), fixed, fixed_uv);
     EXPECT_TRUE(after.valid);
@@ -248,12 +252,20 @@ TEST(Relax, RejectsAnInvalidStartAndStopsAtTheTolerance) {
     EXPECT_LE(sa.iterations, 2);
     RelaxOptions tight;
     tight.tolerance = 1e-9;
+    tight.energy_tolerance = 0;
     tight.max_iterations = 5000;
     std::vector<Vec2> b = uv;
     const RelaxStats sb = relax(c.cut.mesh, b, c.cut.feature_vertex, tight);
     EXPECT_TRUE(sb.converged);
     EXPECT_GT(sb.iterations, sa.iterations);
     EXPECT_LT(sb.last_gain, 1e-9);
+    // The default stops when a sweep gains less than 0.1% of the energy: in between.
+    std::vector<Vec2> c2 = uv;
+    const RelaxStats sc = relax(c.cut.mesh, c2, c.cut.feature_vertex);
+    EXPECT_TRUE(sc.converged);
+    EXPECT_GT(sc.iterations, sa.iterations);
+    EXPECT_LT(sc.iterations, sb.iterations);
+    EXPECT_LE(sc.energy_after, sc.energy_before);
     // At convergence every free vertex sits at its weighted average: relaxing again moves nothing.
     std::vector<Vec2> again = b;
     tight.max_iterations = 1;

@@ -333,7 +333,14 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
         return s;
     };
     Sums total;
-    auto energy = [&](const Sums& t) { return area3 / t.a2 * t.x + t.a2 / area3 * t.y; };
+    auto energy_of = [&](const Sums& t) { return (area3 / t.a2 * t.x + t.a2 / area3 * t.y) / area3; };
+    // E(total + delta) - E(total), written in the deltas so that a small change of one vertex
+    // is not lost in the rounding of sums over the whole mesh.
+    auto energy_change = [&](const Sums& delta) {
+        const double A2 = total.a2, A2n = total.a2 + delta.a2;
+        return area3 * (delta.x * A2 - total.x * delta.a2) / (A2 * A2n) +
+               (A2 * delta.y + delta.a2 * total.y + delta.a2 * delta.y) / area3;
+    };
 
     auto triangles_ok = [&](int v, const Vec2& p) {
         for (int i = rings.face_offset[v]; i < rings.face_offset[v + 1]; ++i) {
@@ -365,19 +372,26 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
         return true;
     };
 
+    std::vector<char> active(nv, 1);
     for (int it = 0; it < options.max_iterations; ++it) {
         Eigen::AlignedBox2d box;
         for (const Vec2& p : uv) box.extend(p);
         const double diag = box.diagonal().norm();
         if (!(diag > 0)) break;
         const double negligible = 1e-3 * options.tolerance * diag;
+        double sweep_start_energy = 0;
         if (options.energy_guard) {  // recomputed each sweep so that rounding does not drift
             total = Sums();
             for (int f = 0; f < mesh.num_faces(); ++f) face_sums(f, -1, Vec2::Zero(), total);
+            sweep_start_energy = energy_of(total);
+            if (it == 0) stats.energy_before = sweep_start_energy;
         }
         double max_move = 0;
         for (int v = 0; v < nv; ++v) {
-            if (!is_free[v]) continue;
+            // Only vertices whose neighbourhood changed since they were last looked at can have
+            // a new target or a newly allowed move: near convergence most of the mesh is skipped.
+            if (!is_free[v] || !active[v]) continue;
+            active[v] = 0;
             Vec2 target = Vec2::Zero();
             for (int i = w_offset[v]; i < w_offset[v + 1]; ++i) target += w_val[i] * uv[w_nbr[i]];
             const Vec2 d = target - uv[v];
@@ -385,19 +399,22 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
             double step = 1;
             bool accepted = false;
             const Sums old_local = options.energy_guard ? local_sums(v, uv[v]) : Sums();
-            const double e0 = options.energy_guard ? energy(total) : 0;
-            Sums trial;
+            Sums delta;
+            auto energy_ok = [&](const Vec2& p) {
+                const Sums l = local_sums(v, p);
+                delta = {l.x - old_local.x, l.y - old_local.y, l.a2 - old_local.a2};
+                return energy_change(delta) <= 0;
+            };
             for (int h = 0; h <= options.max_halvings; ++h, step *= 0.5) {
                 const Vec2 p = uv[v] + step * d;
                 if (p == uv[v]) break;
                 if (!triangles_ok(v, p)) continue;
-                if (options.energy_guard) {
-                    const Sums l = local_sums(v, p);
-                    trial = {total.x - old_local.x + l.x, total.y - old_local.y + l.y, total.a2 - old_local.a2 + l.a2};
-                    if (!(energy(trial) <= e0)) {
-                        ++stats.energy_rejections;
-                        continue;
-                    }
+                if (options.energy_guard && !energy_ok(p)) {
+                    ++stats.energy_rejections;
+                    // If even the shortest step raises the energy, the direction climbs: stop
+                    // here instead of trying every length in between.
+                    if (h == 0 && !energy_ok(uv[v] + std::ldexp(1.0, -options.max_halvings) * d)) break;
+                    continue;
                 }
                 if (rings.border[v] && options.check_border && !border_ok(v, p)) {
                     ++stats.border_rejections;
@@ -413,20 +430,24 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
                     uv[v] = p;
                 }
                 accepted = true;
-                if (options.energy_guard) total = trial;
+                if (options.energy_guard) total = {total.x + delta.x, total.y + delta.y, total.a2 + delta.a2};
                 if (h > 0) ++stats.moves_shortened;
                 break;
             }
             if (accepted) {
                 ++stats.moves;
                 max_move = std::max(max_move, step * d.norm());
+                active[v] = 1;
+                for (int i = rings.begin(v); i < rings.end(v); ++i) active[rings.nbr[i]] = 1;
             } else {
                 ++stats.moves_rejected;
             }
         }
         stats.iterations = it + 1;
         stats.last_gain = max_move / diag;
-        if (stats.last_gain < options.tolerance) {
+        if (options.energy_guard) stats.energy_after = energy_of(total);
+        if (stats.last_gain < options.tolerance ||
+            (options.energy_guard && stats.energy_after > (1 - options.energy_tolerance) * sweep_start_energy)) {
             stats.converged = true;
             break;
         }

@@ -40,6 +40,9 @@ struct RelaxOptions {
     /// towards a more conformal but much more area-distorted map (mushroom, lion-head with three
     /// border features: symmetric Dirichlet x2); with it the relaxation is a descent method.
     bool energy_guard = true;
+    /// With the energy guard: also stop when a sweep lowers the symmetric Dirichlet energy by
+    /// less than this fraction (the "gain is small"; most of the gain comes in the first sweeps).
+    double energy_tolerance = 1e-3;
 };
 
 /// What `relax` did.
@@ -52,6 +55,8 @@ struct RelaxStats {
     long energy_rejections = 0;  ///< trial steps refused by the energy guard
     int free_vertices = 0;    ///< vertices that may move (not fixed, with usable weights)
     double last_gain = 0;     ///< largest move of the last sweep, relative to the UV bbox diagonal
+    double energy_before = 0; ///< symmetric Dirichlet energy (as `certify` reports it) before, with the guard
+    double energy_after = 0;  ///< ... and after
     bool converged = false;   ///< stopped by the tolerance, not by max_iterations
 };
 
