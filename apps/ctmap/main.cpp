@@ -17,6 +17,7 @@
 #include "ctmap/io/mesh_topology.h"
 #include "ctmap/io/obj_io.h"
 #include "ctmap/io/read_mesh.h"
+#include "commands.h"
 
 namespace {
 
@@ -217,6 +218,9 @@ int run(int argc, char** argv) {
     auto* demo = app.add_subcommand("demo", "Run ctmap on the shipped example (nefertiti + astronaut)");
     demo->add_option("--out", demo_out, "output folder")->capture_default_str();
 
+    // Subcommands in their own files (commands.h): add one line here per file.
+    const std::vector<cli::Command> commands = {};
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -228,6 +232,8 @@ int run(int argc, char** argv) {
     if (*convert) return cmd_convert(mesh_path, out_path);
     if (*check) return cmd_check(mesh_path, features_path, image_arg, as_json);
     if (*demo) return cmd_demo(demo_out);
+    for (const cli::Command& c : commands)
+        if (*c.sub) return c.run();
     return kExitBadInput;
 }
 
