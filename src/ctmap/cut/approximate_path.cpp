@@ -22,7 +22,7 @@ public:
             int n = 0;
             if (!m.is_border_edge(e) && !c.path_edges->count(m.edges[e])) {
                 n = int((m.positions[a] - m.positions[b]).norm() / spacing);
-                if (n == 0 && (blocked(a) || blocked(b))) n = 1;  // keep a way between blocked ends
+                if (n == 0 && blocked(a) && blocked(b)) n = 1;  // keep a way between blocked ends
             }
             offset_[e + 1] = offset_[e] + n;
         }
