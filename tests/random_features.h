@@ -1,0 +1,129 @@
+#pragma once
+// Random feasible feature sets (issue 3, must-show 1): the image points are the images of mesh
+// vertices under a known one-to-one map of the disc — Tutte's embedding onto the unit circle,
+// then a twist whose angle grows towards the centre — so a valid constrained map always exists.
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <random>
+
+#include "ctmap/cut/work_mesh.h"
+#include "ctmap/mesh.h"
+
+namespace ctmap::test {
+
+/// Tutte's barycentric embedding with uniform weights, the border on the unit circle by arc length.
+inline std::vector<Vec2> tutte_map(const TriMesh& mesh) {
+    WorkMesh wm(mesh);
+    const std::vector<int> loop = wm.border_loop();
+    const int n = mesh.num_vertices();
+    std::vector<Vec2> uv(n, Vec2::Zero());
+    std::vector<int> index(n, -1);
+    double total = 0;
+    std::vector<double> acc{0};
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+        total += (mesh.positions[loop[(i + 1) % loop.size()]] - mesh.positions[loop[i]]).norm();
+        acc.push_back(total);
+    }
+    std::vector<char> fixed(n, 0);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+        const double a = 2 * M_PI * acc[i] / total;
+        uv[loop[i]] = Vec2(std::cos(a), std::sin(a));
+        fixed[loop[i]] = 1;
+    }
+    int m = 0;
+    for (int v = 0; v < n; ++v)
+        if (!fixed[v]) index[v] = m++;
+    std::vector<std::vector<int>> nb(n);
+    for (std::size_t e = 0; e < wm.edges.size(); ++e) {
+        const int a = key_lo(wm.edges[e]), b = key_hi(wm.edges[e]);
+        nb[a].push_back(b);
+        nb[b].push_back(a);
+    }
+    std::vector<Eigen::Triplet<double>> trip;
+    Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(m, 2);
+    for (int v = 0; v < n; ++v) {
+        if (fixed[v]) continue;
+        trip.emplace_back(index[v], index[v], double(nb[v].size()));
+        for (int w : nb[v]) {
+            if (fixed[w]) rhs.row(index[v]) += uv[w].transpose();
+            else trip.emplace_back(index[v], index[w], -1.0);
+        }
+    }
+    Eigen::SparseMatrix<double> L(m, m);
+    L.setFromTriplets(trip.begin(), trip.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
+    const Eigen::MatrixX2d x = solver.solve(rhs);
+    for (int v = 0; v < n; ++v)
+        if (!fixed[v]) uv[v] = x.row(index[v]).transpose();
+    return uv;
+}
+
+/// A twist of the unit disc: angle += strength (1 - r^2). One-to-one, the identity on the circle.
+inline Vec2 twist(const Vec2& p, double strength) {
+    const double r = p.norm(), a = std::atan2(p.y(), p.x()) + strength * (1 - r * r);
+    return Vec2(r * std::cos(a), r * std::sin(a));
+}
+
+struct RandomFeatures {
+    std::vector<int> vertex;  ///< feature vertices
+    std::vector<Vec2> uv;     ///< their image points (UV, in [0,1]^2)
+};
+
+/// Picks `n_border` border features and up to `n_total - n_border` interior ones, image points
+/// from `tutte` twisted by `strength`; interior features are kept only clear of the border
+/// polygon (the input rule "interior features inside the border polygon").
+inline RandomFeatures random_features(const TriMesh& mesh, const std::vector<Vec2>& tutte, int n_total, int n_border,
+                                      double strength, std::mt19937& rng, bool mirror = false) {
+    WorkMesh wm(mesh);
+    std::vector<int> loop = wm.border_loop();
+    RandomFeatures out;
+    std::vector<char> used(mesh.num_vertices(), 0);
+    for (int v : loop) used[v] = 1;  // border vertices only as chosen below
+    std::shuffle(loop.begin(), loop.end(), rng);
+    n_border = std::min<int>(n_border, int(loop.size()));
+    std::vector<int> chosen(loop.begin(), loop.begin() + n_border);
+    auto image = [&](int v) {
+        Vec2 p = twist(tutte[v], strength);
+        if (mirror) p.x() = -p.x();
+        return Vec2(0.5 + 0.45 * p.x(), 0.5 + 0.45 * p.y());
+    };
+    // Border polygon in border order (for the inside test).
+    std::vector<int> order = wm.border_loop();
+    std::vector<Vec2> poly;
+    for (int v : order)
+        if (std::find(chosen.begin(), chosen.end(), v) != chosen.end()) poly.push_back(image(v));
+    auto inside = [&](const Vec2& q) {
+        // Distance to every edge at least `margin`, and winding number non-zero.
+        const double margin = 1e-3;
+        int wn = 0;
+        for (std::size_t i = 0; i < poly.size(); ++i) {
+            const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+            const Vec2 ab = b - a;
+            const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+            if ((a + t * ab - q).norm() < margin) return false;
+            const double cross = ab.x() * (q.y() - a.y()) - ab.y() * (q.x() - a.x());
+            if (a.y() <= q.y() && b.y() > q.y() && cross > 0) ++wn;
+            if (a.y() > q.y() && b.y() <= q.y() && cross < 0) --wn;
+        }
+        return wn != 0;
+    };
+    for (int v : chosen) {
+        out.vertex.push_back(v);
+        out.uv.push_back(image(v));
+    }
+    std::vector<int> interior;
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+        if (!used[v]) interior.push_back(v);
+    std::shuffle(interior.begin(), interior.end(), rng);
+    for (int v : interior) {
+        if (int(out.vertex.size()) >= n_total) break;
+        const Vec2 q = image(v);
+        if (!inside(q)) continue;
+        out.vertex.push_back(v);
+        out.uv.push_back(q);
+    }
+    return out;
+}
+
+}  // namespace ctmap::test
