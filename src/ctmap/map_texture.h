@@ -1,0 +1,83 @@
+#pragma once
+/// \file map_texture.h
+/// The whole constrained texture mapping pipeline (paper §2, steps 2-4): feature triangulation
+/// in the image, the cut into matching patches, the mean value embedding of each patch, the
+/// relaxation, and the certificate. `ctmap map`, `ctmap demo`, the tests and the benchmarks all
+/// call this one function, so what they measure is what users run.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ctmap/certify/certificate.h"
+#include "ctmap/cut/cut_mesh.h"
+#include "ctmap/domain/feature_triangulation.h"
+#include "ctmap/embed/mean_value_embedding.h"
+#include "ctmap/io/features.h"
+#include "ctmap/mesh.h"
+#include "ctmap/refine/relax.h"
+
+namespace ctmap {
+
+/// Options of `map_texture`.
+struct MapOptions {
+    CutOptions cut;
+    EmbedOptions embed;
+    RelaxOptions relax;
+    bool refine = true;  ///< run the relaxation (paper §2.4); off gives the bare embedding
+    /// Called when a stage starts ("triangulate", "paths", "embed", "refine", "certify") and, for
+    /// the paths, as they are inserted (done of total); for progress lines.
+    std::function<void(const std::string& stage, int done, int total)> progress;
+};
+
+/// Wall-clock milliseconds per stage, like the paper's Table 2 (`read` is filled by callers that
+/// read files; `total` is the sum of the stages run here plus `read`).
+struct MapTimings {
+    double read = 0, triangulate = 0, paths = 0, embed = 0, refine = 0, certify = 0, total = 0;
+};
+
+/// One feature for `map_texture`: a vertex of the input mesh, or a 3D point on its surface
+/// (vertex -1), and its UV (DESIGN §3: u = x / W, v = 1 - y / H).
+struct MapFeature {
+    std::string name;
+    int vertex = -1;
+    Vec3 point = Vec3::Zero();
+    Vec2 uv{0, 0};
+};
+
+/// The result: a certified map.
+struct MapResult {
+    /// The cut mesh: its vertices [0, |V|) are the input's in order (DESIGN §3); point features,
+    /// path and Steiner vertices follow. `cut.feature_vertex[i]` is feature i's vertex.
+    CutMesh cut;
+    std::vector<Vec2> uv;             ///< one UV per vertex of cut.mesh (the written map)
+    std::vector<Vec2> feature_uv;     ///< per feature, its UV constraint
+    FeatureTriangulation triangulation;
+    CutStats cut_stats;
+    FlatEdgeStats flat_edges;
+    RelaxStats relax_stats;
+    Distortion before_refine;         ///< distortion of the bare embedding
+    Certificate certificate;          ///< of the written map (valid, or map_texture throws)
+    MapTimings timings_ms;
+    int point_features = 0;           ///< features given as 3D points (inserted as vertices)
+
+    /// The map as a textured mesh with per-vertex UVs (one chart), ready for write_obj/write_glb.
+    TexturedMesh textured() const { return TexturedMesh::with_vertex_uvs(cut.mesh, uv); }
+};
+
+/// Maps `mesh` so that every feature lands exactly on its UV (paper §2.2-2.4). Point features are
+/// first inserted as vertices (the face or edge they lie on is split; a point on a vertex uses the
+/// vertex). The map is certified (exact predicates) before it is returned.
+/// \pre `mesh` is a manifold disc (io's `require_disc`); features are distinct, finite, with UVs
+///      that `triangulate_features` accepts.
+/// \throw BadInput naming the features for an infeasible feature layout (fewer than 3 border
+///        features, a border polygon that is not simple, ...), with `features_file` in the
+///        message; InternalError if the cut fails or the map does not pass its certificate (no
+///        invalid map is ever returned).
+MapResult map_texture(const TriMesh& mesh, const std::vector<MapFeature>& features, const MapOptions& options = {},
+                      const std::string& features_file = "");
+
+/// The features of a features file for `map_texture`. \pre `resolve_units(fs, width, height)`
+/// was called (image points in pixels).
+std::vector<MapFeature> map_features(const FeatureSet& fs, int width, int height);
+
+}  // namespace ctmap
