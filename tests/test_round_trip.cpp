@@ -157,6 +157,20 @@ TEST(RoundTrip, ObjKeepsRandomBitPatternsBitwise) {
     EXPECT_EQ(cgal.faces, tm.mesh.faces);
 }
 
+TEST(RoundTrip, ObjKeepsPatchGroups) {
+    TempDir dir;
+    TexturedMesh tm = grid_with_corner_uvs(6, awkward_values(), awkward_values(), 1);
+    for (std::size_t f = 0; f < tm.mesh.faces.size(); ++f) tm.patch.push_back(int(f * 7 % 5));  // runs and jumps
+    write_obj(tm, dir / "m.obj");
+    const TexturedMesh back = read_textured_obj(dir / "m.obj");
+    expect_bitwise_equal(tm, back);
+    EXPECT_EQ(back.patch, tm.patch);
+    // Without groups on every face, no patch ids are made up.
+    tm.patch.clear();
+    write_obj(tm, dir / "n.obj");
+    EXPECT_TRUE(read_textured_obj(dir / "n.obj").patch.empty());
+}
+
 TEST(RoundTrip, ObjMapKdFollowsTheImageBesideTheObj) {
     TempDir dir;
     std::filesystem::create_directories(dir / "tex");

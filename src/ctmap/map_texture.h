@@ -61,7 +61,12 @@ struct MapResult {
     int point_features = 0;           ///< features given as 3D points (inserted as vertices)
 
     /// The map as a textured mesh with per-vertex UVs (one chart), ready for write_obj/write_glb.
-    TexturedMesh textured() const { return TexturedMesh::with_vertex_uvs(cut.mesh, uv); }
+    /// Faces carry their patch (`TexturedMesh::patch`), so the OBJ shows the cut as groups.
+    TexturedMesh textured() const {
+        TexturedMesh t = TexturedMesh::with_vertex_uvs(cut.mesh, uv);
+        t.patch = cut.face_patch;
+        return t;
+    }
 };
 
 /// Maps `mesh` so that every feature lands exactly on its UV (paper §2.2-2.4). Point features are

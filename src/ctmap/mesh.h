@@ -30,6 +30,10 @@ struct TexturedMesh {
     std::vector<Vec2> uvs;
     std::vector<Tri> uv_faces;
     std::vector<int> chart;
+    /// Optional: per face, the patch (image triangle) it was mapped into; written to OBJ as
+    /// `g patch_<id>` groups so that `ctmap render --mode paths` can draw the cut from the file.
+    /// Empty when unknown.
+    std::vector<int> patch;
 
     /// A textured mesh whose UVs are per vertex (one chart): uv_faces = faces.
     static TexturedMesh with_vertex_uvs(TriMesh m, std::vector<Vec2> vertex_uvs) {

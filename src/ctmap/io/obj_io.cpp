@@ -62,7 +62,9 @@ void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::s
         s += '\n';
     }
     s += "usemtl ctmap_texture\n";
+    const bool groups = tm.patch.size() == tm.mesh.faces.size();
     for (std::size_t f = 0; f < tm.mesh.faces.size(); ++f) {
+        if (groups && (f == 0 || tm.patch[f] != tm.patch[f - 1])) s += "g patch_" + std::to_string(tm.patch[f]) + '\n';
         s += 'f';
         for (int k = 0; k < 3; ++k) {
             s += ' ' + std::to_string(tm.mesh.faces[f][k] + 1);
@@ -134,6 +136,8 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
     std::string line;
     LineReader r{path};
     bool any_uv_face = false, any_plain_face = false;
+    int group_patch = -1;           // from `g patch_<id>` (ctmap's own files)
+    bool all_faces_grouped = true;
     while (std::getline(in, line)) {
         ++r.line_no;
         if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -195,7 +199,18 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
             for (std::size_t k = 1; k + 1 < vi.size(); ++k) {
                 tm.mesh.faces.push_back({vi[0], vi[k], vi[k + 1]});
                 tm.uv_faces.push_back({ti[0], ti[k], ti[k + 1]});
+                tm.patch.push_back(group_patch);
             }
+            all_faces_grouped = all_faces_grouped && group_patch >= 0;
+        } else if (starts("g")) {
+            std::string rest(p + 1, end);
+            rest.erase(0, rest.find_first_not_of(" \t"));
+            int id = -1;
+            if (rest.rfind("patch_", 0) == 0) {
+                auto [q, ecode] = std::from_chars(rest.data() + 6, rest.data() + rest.size(), id);
+                if (ecode != std::errc() || q != rest.data() + rest.size() || id < 0) id = -1;
+            }
+            group_patch = id;
         } else if (starts("mtllib")) {
             std::string rest(p + 6, end);
             rest.erase(0, rest.find_first_not_of(" \t"));
@@ -206,6 +221,7 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
     if (tm.mesh.faces.empty()) throw BadInput(path, "no faces");
     if (any_uv_face && any_plain_face) throw BadInput(path, "some faces have texture coordinates and some do not");
     if (!any_uv_face) tm.uv_faces.clear();
+    if (!all_faces_grouped) tm.patch.clear();
     tm.chart.assign(tm.mesh.faces.size(), 0);
 
     if (image) {
