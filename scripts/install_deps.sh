@@ -7,6 +7,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev libstb-dev libtinygltf-dev
   libgtest-dev libbenchmark-dev
+  libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
 )
 missing=()
 for p in "${packages[@]}"; do

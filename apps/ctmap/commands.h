@@ -13,4 +13,6 @@ struct Command {
     std::function<int()> run;      ///< runs it after parsing; returns the exit code (DESIGN §3)
 };
 
+Command add_render_command(CLI::App& app);  // cmd_render.cpp
+
 }  // namespace ctmap::cli

@@ -219,7 +219,9 @@ int run(int argc, char** argv) {
     demo->add_option("--out", demo_out, "output folder")->capture_default_str();
 
     // Subcommands in their own files (commands.h): add one line here per file.
-    const std::vector<cli::Command> commands = {};
+    const std::vector<cli::Command> commands = {
+        cli::add_render_command(app),
+    };
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,113 @@
+// Reading and checking the inputs of a picture (render_inputs.h).
+#include "ctmap/render/render_inputs.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <limits>
+
+#include "ctmap/certify/certificate.h"
+#include "ctmap/cut/cut_mesh.h"
+#include "ctmap/errors.h"
+#include "ctmap/io/mesh_topology.h"
+#include "ctmap/io/obj_io.h"
+
+namespace ctmap {
+
+RenderScene RenderInputs::scene() const {
+    RenderScene s;
+    s.mesh = &mesh;
+    s.image = image ? &*image : nullptr;
+    s.feature_vertex = feature_vertex;
+    s.feature_uv = feature_uv;
+    s.triangulation = triangulation ? &*triangulation : nullptr;
+    return s;
+}
+
+namespace {
+
+bool any(const std::vector<RenderMode>& modes, std::initializer_list<RenderMode> of) {
+    return std::any_of(modes.begin(), modes.end(),
+                       [&](RenderMode m) { return std::find(of.begin(), of.end(), m) != of.end(); });
+}
+
+std::string mode_names(const std::vector<RenderMode>& modes, std::initializer_list<RenderMode> of) {
+    std::string s;
+    for (RenderMode m : modes)
+        if (std::find(of.begin(), of.end(), m) != of.end()) s += (s.empty() ? "" : ", ") + to_string(m);
+    return "--mode " + s;
+}
+
+}  // namespace
+
+RenderInputs read_render_inputs(const RenderFiles& files, const std::vector<RenderMode>& modes) {
+    using M = RenderMode;
+    RenderInputs in;
+    std::string mtl_image;
+    in.mesh = read_textured_obj(files.map, &mtl_image);
+    if (in.mesh.mesh.faces.empty()) throw BadInput(files.map, "no faces: nothing to draw");
+    const bool has_uv = !in.mesh.uvs.empty() && in.mesh.uv_faces.size() == in.mesh.mesh.faces.size();
+    if (!has_uv && any(modes, {M::textured, M::checker, M::uv}))
+        throw BadInput(files.map, "no texture coordinates (`vt` and `f v/vt`), which " +
+                                      mode_names(modes, {M::textured, M::checker, M::uv}) +
+                                      " needs: make a map first with `ctmap map`");
+    if (in.mesh.patch.size() != in.mesh.mesh.faces.size() && any(modes, {M::paths}))
+        throw BadInput(files.map, "no patch groups (`g patch_<id>` before the faces), which --mode paths needs to "
+                                  "find the cut: use an OBJ written by `ctmap map`");
+
+    if (!files.features.empty()) in.features = read_features(files.features);
+    const bool needs_image = any(modes, {M::textured, M::uv, M::triangulation});
+    std::string image = !files.image.empty() ? files.image : !mtl_image.empty() ? mtl_image : in.features.image;
+    if (needs_image && image.empty())
+        throw BadInput(files.map, "no texture image (its material has no `map_Kd`), which " +
+                                      mode_names(modes, {M::textured, M::uv, M::triangulation}) +
+                                      " needs: give --image");
+    if (!image.empty()) {
+        if (needs_image || !files.image.empty() || std::filesystem::exists(image)) {
+            // read_image names the file (the material's map_Kd, resolved against its folder) when
+            // it is missing or broken.
+            in.image = read_image(image);
+            in.image_path = image;
+        }
+    }
+
+    if (!files.features.empty()) {
+        FeatureSet& fs = in.features;
+        int w = 0, h = 0;
+        if (in.image) w = in.image->width, h = in.image->height;
+        else if (fs.image_size) w = (*fs.image_size)[0], h = (*fs.image_size)[1];
+        else throw BadInput(files.features, "no image size for the features: give --image, or \"image\" or "
+                                            "\"image_size\" in the features file");
+        resolve_units(fs, w, h);
+        check_features_on_mesh(fs, in.mesh.mesh, files.map);
+        Eigen::AlignedBox3d box;
+        for (const Vec3& p : in.mesh.mesh.positions) box.extend(p);
+        for (const Feature& f : fs.features) {
+            int v = f.vertex;
+            if (v < 0) {
+                double best = std::numeric_limits<double>::infinity();
+                for (int u = 0; u < in.mesh.mesh.num_vertices(); ++u)
+                    if (const double d = (in.mesh.mesh.positions[u] - *f.point).norm(); d < best) best = d, v = u;
+                if (!(best <= 1e-6 * box.diagonal().norm()))
+                    throw BadInput(files.features, "feature \"" + f.name + "\" is a 3D point with no vertex of " +
+                                                       files.map + " at it: was this map made from these features?");
+            }
+            in.feature_vertex.push_back(v);
+            in.feature_uv.push_back(image_to_uv(f.image, w, h));
+        }
+    }
+
+    if (any(modes, {M::triangulation})) {
+        if (files.features.empty())
+            throw BadInput(files.map, "--mode triangulation draws the features' triangulation: give --features");
+        require_disc(compute_topology(in.mesh.mesh), files.map);
+        std::vector<std::string> names;
+        for (const Feature& f : in.features.features) names.push_back(f.name);
+        TriangulateOptions topt;
+        topt.features_file = files.features;
+        in.triangulation =
+            triangulate_features(in.feature_uv, border_features(in.mesh.mesh, in.feature_vertex), names, topt);
+    }
+    return in;
+}
+
+}  // namespace ctmap
