@@ -43,7 +43,7 @@ K::Point_2 frame_point(const Tri& t, const FaceEdit::EdgePoint& p) {
 }
 
 void apply_edits(WorkMesh& mesh, std::map<int, FaceEdit>& edits) {
-    std::vector<char> remove(mesh.faces.size(), 0);
+    std::vector<int> removed;
     std::vector<Tri> added;
     std::vector<int> added_origin;
     for (auto& [f, edit] : edits) {
@@ -69,21 +69,9 @@ void apply_edits(WorkMesh& mesh, std::map<int, FaceEdit>& edits) {
             added.push_back({fit->vertex(0)->info(), fit->vertex(1)->info(), fit->vertex(2)->info()});
             added_origin.push_back(mesh.origin[f]);
         }
-        remove[f] = 1;
+        removed.push_back(f);
     }
-    std::vector<Tri> faces;
-    std::vector<int> origin;
-    faces.reserve(mesh.faces.size() + added.size());
-    for (int f = 0; f < int(mesh.faces.size()); ++f)
-        if (!remove[f]) {
-            faces.push_back(mesh.faces[f]);
-            origin.push_back(mesh.origin[f]);
-        }
-    faces.insert(faces.end(), added.begin(), added.end());
-    origin.insert(origin.end(), added_origin.begin(), added_origin.end());
-    mesh.faces = std::move(faces);
-    mesh.origin = std::move(origin);
-    mesh.rebuild();
+    mesh.replace_faces(removed, added, added_origin);
 }
 
 }  // namespace

@@ -20,13 +20,13 @@ struct PathNode {
 /// Inserts the path `nodes` (consecutive nodes share a face, or an edge when `face` is -1) into
 /// `mesh`: edge points become vertices, every face the path crosses is re-triangulated (CGAL's
 /// constrained Delaunay triangulation in the face's affine frame) so that consecutive path
-/// vertices are joined by mesh edges. Rebuilds the adjacency.
+/// vertices are joined by mesh edges. Updates the adjacency locally (WorkMesh::replace_faces).
 /// \return the path as a chain of vertex ids.
 /// \throw InternalError if the path crosses itself inside a face.
 std::vector<int> insert_path(WorkMesh& mesh, const std::vector<PathNode>& nodes);
 
 /// Inserts a vertex at barycentric coordinates `bary` of face `f` (splitting the face, or the
-/// edge when one coordinate is 0). Returns the new vertex. Rebuilds the adjacency.
+/// edge when one coordinate is 0). Returns the new vertex. Updates the adjacency locally.
 int insert_point(WorkMesh& mesh, int f, const Vec3& bary);
 
 }  // namespace ctmap

@@ -32,6 +32,54 @@ void WorkMesh::rebuild() {
         }
 }
 
+void WorkMesh::replace_faces(const std::vector<int>& removed, const std::vector<Tri>& added,
+                             const std::vector<int>& added_origin) {
+    std::vector<int> touched_edges;
+    for (int f : removed) {
+        const Tri& t = faces[f];
+        for (int k = 0; k < 3; ++k) {
+            const int e = find_edge(t[k], t[(k + 1) % 3]);
+            auto& ef = edge_faces[e];
+            if (ef[0] == f) ef = {ef[1], -1};
+            else if (ef[1] == f) ef[1] = -1;
+            touched_edges.push_back(e);
+            auto& vf = vertex_faces[t[k]];
+            vf.erase(std::find(vf.begin(), vf.end(), f));
+        }
+    }
+    vertex_faces.resize(positions.size());
+    for (std::size_t i = 0; i < added.size(); ++i) {
+        int id;
+        if (i < removed.size()) {
+            id = removed[i];
+            faces[id] = added[i];
+            origin[id] = added_origin[i];
+        } else {
+            id = int(faces.size());
+            faces.push_back(added[i]);
+            origin.push_back(added_origin[i]);
+        }
+        const Tri& t = added[i];
+        for (int k = 0; k < 3; ++k) {
+            const int a = t[k], b = t[(k + 1) % 3];
+            vertex_faces[a].push_back(id);
+            auto [it, fresh] = edge_id.emplace(edge_key(a, b), int(edges.size()));
+            if (fresh) {
+                edges.push_back(edge_key(a, b));
+                edge_faces.push_back({id, -1});
+                continue;
+            }
+            auto& ef = edge_faces[it->second];
+            if (ef[0] < 0) ef[0] = id;
+            else if (ef[1] < 0) ef[1] = id;
+            else throw InternalError("the refined mesh would not be manifold at edge " + std::to_string(a) + "-" + std::to_string(b));
+        }
+    }
+    if (removed.size() > added.size()) throw InternalError("replace_faces: fewer faces added than removed");
+    for (int e : touched_edges)
+        if (edge_faces[e][0] < 0) edge_id.erase(edges[e]);  // split: dead from now on
+}
+
 std::vector<WorkMesh::FanEntry> WorkMesh::fan(int v) const {
     // Per incident face, the corners after v in its orientation.
     std::vector<FanEntry> entries;

@@ -37,7 +37,19 @@ struct WorkMesh {
         auto it = edge_id.find(edge_key(a, b));
         return it == edge_id.end() ? -1 : it->second;
     }
-    bool is_border_edge(int e) const { return edge_faces[e][1] < 0; }
+    /// A border edge has one face. Edges split by an insertion stay in `edges` with no face at
+    /// all (ids are never reused, so ids held elsewhere stay meaningful); they are neither border
+    /// nor interior and `find_edge` no longer finds them.
+    bool is_border_edge(int e) const { return edge_faces[e][0] >= 0 && edge_faces[e][1] < 0; }
+    bool is_live_edge(int e) const { return edge_faces[e][0] >= 0; }
+
+    /// Replaces the faces `removed` by `added` (with their input faces `added_origin`) and updates
+    /// the adjacency locally, in time proportional to the faces changed: the cut inserts hundreds
+    /// of paths, and rebuilding the whole adjacency after each was the cut's main cost on large
+    /// meshes. Added faces take the removed faces' ids first, then new ids at the end.
+    /// \pre positions holds every vertex of `added`; the result is a manifold mesh.
+    /// 	hrow InternalError if an edge would get a third face.
+    void replace_faces(const std::vector<int>& removed, const std::vector<Tri>& added, const std::vector<int>& added_origin);
 
     /// Faces around `v` in counter-clockwise order, each with the edge it starts from: for face
     /// (v, x, y) the fan goes from edge (v, x) to edge (v, y). A border vertex's fan starts at
