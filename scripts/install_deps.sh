@@ -8,7 +8,10 @@ packages=(
   libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev libstb-dev libtinygltf-dev
   libgtest-dev libbenchmark-dev
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  nodejs chromium
 )
+# npm ships inside NodeSource's nodejs; only a Debian nodejs needs Debian's npm beside it.
+command -v npm >/dev/null || packages+=(npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -7,6 +7,8 @@ cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 bash scripts/fetch_data.sh
 bash scripts/build.sh build
+# three.js and playwright-core for the viewer test (tests/web), exactly as package-lock.json pins them.
+(cd tests/web && npm ci --no-audit --no-fund)
 (cd build && ctest --output-on-failure -j2 --timeout 1200)
 echo "== bad-input suite under AddressSanitizer + UndefinedBehaviorSanitizer"
 bash scripts/build.sh build-asan -DCTMAP_SANITIZE=ON -DCTMAP_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
