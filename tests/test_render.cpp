@@ -11,6 +11,8 @@
 #include "ctmap/io/obj_io.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
+#include "ctmap/render/gallery.h"
+#include "ctmap/render/render_inputs.h"
 #include "ctmap/render/render_map.h"
 #include "test_support.h"
 
@@ -458,6 +460,54 @@ TEST(Render, CliDrawsTheFeatureColoursAndRejectsBadInput) {
     std::filesystem::remove(dir / "blobs.png");
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
     EXPECT_FALSE(std::filesystem::exists(dir / "x.jpg"));
+}
+
+}  // namespace
+}  // namespace ctmap::test
+
+
+namespace ctmap::test {
+namespace {
+
+// The demo's gallery: five pictures, the same pixels as `ctmap render` draws, and a page that
+// shows every one of them with the paper's figure it redraws. Nothing appears before commit.
+TEST(Render, GalleryShowsTheFivePicturesOfTheMap) {
+    const Example& e = example();
+    TempDir dir;
+    write_obj(e.textured, dir / "map.obj", data("images/astronaut.png"));
+    RenderFiles files;
+    files.map = dir / "map.obj";
+    files.features = data("features/nefertiti_astronaut.json");
+    GalleryOptions opt;
+    opt.size = 320;
+    opt.title = "nefertiti <test>";
+    opt.notes = {"certificate: valid"};
+    OutputSet outputs;
+    const std::vector<GalleryPicture> pictures = write_gallery(files, dir.path().string(), "nef", opt, outputs);
+    ASSERT_EQ(pictures.size(), 5u);
+    EXPECT_FALSE(std::filesystem::exists(dir / "index.html"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "nef_textured.png"));
+    outputs.commit_all();
+    const std::string html = read_file(dir / "index.html");
+    EXPECT_NE(html.find("nefertiti &lt;test&gt;"), std::string::npos);  // escaped
+    for (const GalleryPicture& p : pictures) {
+        SCOPED_TRACE(p.file);
+        EXPECT_NE(html.find("<img src=\"" + p.file + "\""), std::string::npos);
+        EXPECT_NE(html.find(p.figure), std::string::npos);
+        const Image img = read_image(dir / p.file);
+        EXPECT_EQ(img.width, 320);
+        // The same picture as render_map (and so `ctmap render`) with the same options.
+        const RenderInputs in = read_render_inputs(files, {p.mode});
+        RenderOptions ro;
+        ro.mode = p.mode;
+        ro.width = img.width;
+        ro.height = img.height;
+        const Image again = render_map(in.scene(), ro);
+        int differing = 0;
+        for (std::size_t i = 0; i < img.pixels.size(); ++i) differing += std::abs(int(img.pixels[i]) - int(again.pixels[i])) > 2;
+        EXPECT_EQ(differing, 0);
+    }
+    for (const char* fig : {"Fig. 1c", "Fig. 1d", "Fig. 1e/g", "Fig. 1i", "Fig. 5-7"}) EXPECT_NE(html.find(fig), std::string::npos);
 }
 
 }  // namespace
