@@ -1,13 +1,14 @@
 // Input of the viewer test (issue 4 must-show 5): a texture that is a distinct solid colour blob
 // at each of nefertiti's feature image points on a neutral grey background, and the features
-// file that points at it (nefertiti's features, the same pixels). The test maps them with the
-// real `ctmap map --glb`, opens the GLB in three.js in headless Chromium and looks for each
-// feature's blob colour where the feature vertex is drawn (tests/web/viewer_test.mjs).
+// file that points at it (nefertiti's features, the same pixels). The test maps them, opens the
+// GLB and the OBJ + MTL in three.js in headless Chromium and looks for each feature's blob colour
+// where the feature vertex is drawn (tests/web/viewer_test.mjs).
 //
-// Usage: ctmap_viewer_fixture OUT_DIR [--glb MAP.glb]
+// Usage: ctmap_viewer_fixture OUT_DIR [--map]
 // Writes OUT_DIR/nefertiti.off (a copy of the mesh), OUT_DIR/blobs.png, OUT_DIR/features.json and
-// OUT_DIR/expected.json (per feature: name, vertex, image point, colour painted there). With --glb, also the map itself through the library
-// (map_texture + write_glb), for builds without the `ctmap map` command.
+// OUT_DIR/expected.json (per feature: name, vertex, 3D position, image point, colour painted
+// there). With --map, also the map itself through the library (map_texture, then write_obj and
+// write_glb to OUT_DIR/map.obj, map.mtl, map.glb), for builds without the `ctmap map` command.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -21,6 +22,7 @@
 #include "ctmap/io/features.h"
 #include "ctmap/io/glb_io.h"
 #include "ctmap/io/image.h"
+#include "ctmap/io/obj_io.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
 
@@ -58,9 +60,9 @@ int max_channel_difference(const std::array<int, 3>& a, const std::array<int, 3>
 }  // namespace
 
 int main(int argc, char** argv) {
-    const bool glb = argc == 4 && std::string(argv[2]) == "--glb";
-    if (argc != 2 && !glb) {
-        std::cerr << "usage: ctmap_viewer_fixture OUT_DIR [--glb MAP.glb]\n";
+    const bool map = argc == 3 && std::string(argv[2]) == "--map";
+    if (argc != 2 && !map) {
+        std::cerr << "usage: ctmap_viewer_fixture OUT_DIR [--map]\n";
         return 2;
     }
     try {
@@ -74,6 +76,8 @@ int main(int argc, char** argv) {
         const ctmap::Image photo = ctmap::read_image(ctmap::find_data_file("images/astronaut.png"));
         ctmap::resolve_units(fs, photo.width, photo.height);
         const int n = int(fs.features.size());
+        const ctmap::TriMesh mesh = ctmap::read_mesh(mesh_file);
+        ctmap::check_features_on_mesh(fs, mesh, mesh_file);
         const std::vector<std::array<int, 3>> colours = palette(n);
         // The viewer test matches within 8 levels per channel; colours must stay far apart from
         // each other and from the background for a match to name one feature.
@@ -111,20 +115,22 @@ int main(int argc, char** argv) {
         nlohmann::json expected = nlohmann::json::array();
         for (int i = 0; i < n; ++i) {
             const ctmap::Feature& f = fs.features[i];
+            const ctmap::Vec3 p = f.vertex >= 0 ? mesh.positions[f.vertex] : *f.point;
             expected.push_back({{"name", f.name},
                                 {"vertex", f.vertex},
+                                {"position", {p.x(), p.y(), p.z()}},
                                 {"image", {f.image.x(), f.image.y()}},
                                 {"colour", colours[i]}});
         }
-        std::ofstream(out / "expected.json") << nlohmann::json{{"radius_px", kRadius},
+        std::ofstream(out / "expected.json") << nlohmann::json{{"image_size", {tex.width, tex.height}},
+                                                               {"radius_px", kRadius},
                                                                {"background", kBackground},
                                                                {"features", expected}}
                                                     .dump(2);
-        if (glb) {
-            const ctmap::TriMesh mesh = ctmap::read_mesh(mesh_file);
-            ctmap::check_features_on_mesh(fs, mesh, "nefertiti.off");
+        if (map) {
             const ctmap::MapResult r = ctmap::map_texture(mesh, ctmap::map_features(fs, tex.width, tex.height));
-            ctmap::write_glb(r.textured(), argv[3], (out / "blobs.png").string());
+            ctmap::write_obj(r.textured(), (out / "map.obj").string(), (out / "blobs.png").string());
+            ctmap::write_glb(r.textured(), (out / "map.glb").string(), (out / "blobs.png").string());
         }
         std::cout << "viewer fixture: " << n << " feature blobs in " << (out / "blobs.png").string() << " ("
                   << tex.width << "x" << tex.height << "), closest colours differ by " << closest << " levels\n";

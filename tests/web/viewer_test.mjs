@@ -1,11 +1,15 @@
 // Issue 4 must-show 5: a ctmap map opens with its texture in a real viewer. Serves viewer.html,
-// three.js and the GLB on localhost, opens them in Debian's Chromium (headless, through
-// playwright-core) and checks, for every feature vertex the camera sees from the front, that the
+// three.js and the map on localhost, opens them in Debian's Chromium (headless, through
+// playwright-core) and checks, for every feature the camera sees from the front, that the
 // rendered pixel has that feature's blob colour (ctmap_viewer_fixture painted a distinct blob at
-// each feature's image point; the map must put the feature's UV exactly there).
+// each feature's image point; the map must put the feature's UV exactly there). Both files a
+// user gets are opened: the GLB (GLTFLoader) and the OBJ with its MTL (OBJLoader, MTLLoader).
 //
-// Usage: node viewer_test.mjs --glb MAP.glb --expected expected.json [--screenshot OUT.png]
-// Exit 0 when every visible feature shows its colour and at least MIN_CHECKED were visible.
+// Usage: node viewer_test.mjs DIR
+// DIR holds expected.json (from ctmap_viewer_fixture), map.glb, map.obj, map.mtl and the texture;
+// the screenshots are written there as viewer_glb.png and viewer_obj.png.
+// Exit 0 when, in both files, every visible feature shows its colour and at least MIN_CHECKED
+// features were visible.
 import fs from 'node:fs';
 import http from 'node:http';
 import os from 'node:os';
@@ -17,35 +21,28 @@ const TOLERANCE = 8;     // levels per channel (0-255): sRGB decode/encode and t
 const MIN_CHECKED = 5;   // visible features needed for the test to mean something
 const CHROMIUM = process.env.CTMAP_CHROMIUM || '/usr/bin/chromium';
 
-function arg(name, required = true) {
-  const i = process.argv.indexOf(name);
-  if (i < 0 || i + 1 >= process.argv.length) {
-    if (required) fail(`missing ${name}`);
-    return null;
-  }
-  return process.argv[i + 1];
-}
+const maxDiff = (a, b) => Math.max(...a.map((v, k) => Math.abs(v - b[k])));
 
 function fail(msg) {
   console.log(`viewer test: ${msg}`);
   process.exit(1);
 }
 
-const glbPath = arg('--glb');
-const expected = JSON.parse(fs.readFileSync(arg('--expected'), 'utf8'));
-const screenshot = arg('--screenshot', false);
-if (!fs.existsSync(glbPath)) fail(`no GLB at ${glbPath}`);
+if (process.argv.length !== 3) fail('usage: node viewer_test.mjs DIR');
+const dir = path.resolve(process.argv[2]);
+const expected = JSON.parse(fs.readFileSync(path.join(dir, 'expected.json'), 'utf8'));
+for (const f of ['map.glb', 'map.obj', 'map.mtl']) if (!fs.existsSync(path.join(dir, f))) fail(`no ${f} in ${dir}`);
 if (!fs.existsSync(path.join(here, 'node_modules', 'three'))) fail(`three.js missing: run 'npm ci' in ${here}`);
 if (!fs.existsSync(CHROMIUM)) fail(`no Chromium at ${CHROMIUM} (Debian package chromium, scripts/install_deps.sh)`);
 const { chromium } = await import('playwright-core');
 
-// Only the page, three.js's modules and the map are served; anything else is a 404.
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.glb': 'model/gltf-binary' };
+// Only the page, three.js's modules and the files directly in DIR are served; anything else is a 404.
+const types = { '.html': 'text/html', '.js': 'text/javascript', '.glb': 'model/gltf-binary', '.png': 'image/png' };
 const server = http.createServer((req, res) => {
   const url = decodeURIComponent(new URL(req.url, 'http://localhost').pathname);
   let file = null;
   if (url === '/' || url === '/viewer.html') file = path.join(here, 'viewer.html');
-  else if (url === '/map.glb') file = glbPath;
+  else if (url.startsWith('/model/') && !url.slice(7).includes('/')) file = path.join(dir, url.slice(7));
   else if (url.startsWith('/node_modules/three/')) {
     file = path.join(here, url);
     if (!file.startsWith(path.join(here, 'node_modules', 'three') + path.sep)) file = null;
@@ -73,40 +70,61 @@ try {
     viewport: { width: 640, height: 640 },
     deviceScaleFactor: 1,
   });
-  const page = await context.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  await page.goto(`${origin}/viewer.html`);
-  await page.waitForFunction(() => window.ctmapReady === true, null, { timeout: 30000 });
-  const result = await page.evaluate((f) => window.ctmapCheck(f),
-    expected.features.map(({ name, vertex }) => ({ name, vertex })));
-  if (screenshot) await page.screenshot({ path: screenshot });
-
-  console.log(`three.js r${(await import('three')).REVISION} in ${await context.browser()?.version?.() ?? 'Chromium'}, ` +
-    `${result.renderer}; ${result.triangles} triangles, ${result.vertices} vertices`);
+  console.log(`Chromium ${context.browser()?.version() ?? ''}`);
   const byName = new Map(expected.features.map((f) => [f.name, f]));
-  let checked = 0, wrong = 0;
-  for (const r of result.features) {
-    const want = byName.get(r.name).colour;
-    if (!r.visible) {
-      console.log(`  ${r.name.padEnd(14)} vertex ${String(r.vertex).padStart(5)} at (${r.px}, ${r.py}): not checked, ${r.reason}`);
-      continue;
+  const failures = [];
+  for (const model of ['glb', 'obj']) {
+    const page = await context.newPage();
+    const errors = [];
+    page.on('pageerror', (e) => errors.push(String(e)));
+    page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+    await page.goto(`${origin}/viewer.html`);
+    await page.waitForFunction(() => window.ctmapReady === true, null, { timeout: 30000 });
+    const result = await page.evaluate(([m, f]) => window.ctmapCheck(m, f),
+      [model, expected.features.map(({ name, position }) => ({ name, position }))]);
+    await page.screenshot({ path: path.join(dir, `viewer_${model}.png`) });
+    await page.close();
+
+    console.log(`map.${model} in three.js r${result.revision}, ${result.renderer}: ${result.triangles} triangles in ${result.meshes} mesh(es)`);
+    let checked = 0, wrong = 0, controls = 0, controlWrong = 0;
+    for (const r of result.features) {
+      const want = byName.get(r.name).colour;
+      const where = `  ${r.name.padEnd(14)} at (${r.px}, ${r.py}):`;
+      if (!r.visible) {
+        console.log(`${where} not checked, ${r.reason}`);
+        continue;
+      }
+      ++checked;
+      const diff = maxDiff(want, r.rgb);
+      const ok = diff <= TOLERANCE;
+      if (!ok) ++wrong;
+      // Control: mirrored, the pixel shows the texture at (W - x, y); outside the feature's own
+      // blob (with 2 px for filtering) that is another colour.
+      const x = byName.get(r.name).image[0];
+      let control = 'control n/a (mirrored point inside its own blob)';
+      if (Math.abs(expected.image_size[0] - 2 * x) > expected.radius_px + 2) {
+        ++controls;
+        const same = maxDiff(want, r.mirrored_rgb) <= TOLERANCE;
+        if (same) ++controlWrong;
+        control = `mirrored [${r.mirrored_rgb}] ${same ? 'STILL THE BLOB' : 'differs'}`;
+      }
+      console.log(`${where} rendered [${r.rgb}], blob [${want}], max channel difference ${diff} ` +
+        `${ok ? 'ok' : 'WRONG'}; ${control}`);
     }
-    ++checked;
-    const diff = Math.max(...want.map((w, k) => Math.abs(w - r.rgb[k])));
-    const ok = diff <= TOLERANCE;
-    if (!ok) ++wrong;
-    console.log(`  ${r.name.padEnd(14)} vertex ${String(r.vertex).padStart(5)} at (${r.px}, ${r.py}): ` +
-      `rendered [${r.rgb}], blob [${want}], max channel difference ${diff} ${ok ? 'ok' : 'WRONG'}`);
+    console.log(`  ${checked} of ${result.features.length} features visible from the front and checked, ` +
+      `${checked - wrong} show their blob colour (tolerance ${TOLERANCE} levels per channel), ${wrong} do not`);
+    if (errors.length) failures.push(`map.${model}: the page reported errors:\n  ${errors.join('\n  ')}`);
+    if (checked < MIN_CHECKED) failures.push(`map.${model}: only ${checked} features visible, need ${MIN_CHECKED}`);
+    console.log(`  control: texture mirrored, ${controls - controlWrong} of ${controls} features changed colour`);
+    if (wrong > 0) failures.push(`map.${model}: ${wrong} features show the wrong colour`);
+    if (controls < MIN_CHECKED - 1 || controlWrong > 0)
+      failures.push(`map.${model}: the mirrored control changed ${controls - controlWrong} of ${controls} colours`);
   }
-  if (errors.length) console.log(`page errors:\n  ${errors.join('\n  ')}`);
-  console.log(`${checked} of ${result.features.length} features visible from the front and checked, ` +
-    `${checked - wrong} show their blob colour (tolerance ${TOLERANCE} levels per channel), ${wrong} do not`);
-  if (errors.length) console.log('viewer test: FAILED, the page reported errors');
-  else if (checked < MIN_CHECKED) console.log(`viewer test: FAILED, only ${checked} features visible, need ${MIN_CHECKED}`);
-  else if (wrong > 0) console.log('viewer test: FAILED, wrong colours');
-  else code = 0;
+  if (failures.length) console.log(`viewer test: FAILED\n${failures.join('\n')}`);
+  else {
+    console.log('viewer test: passed');
+    code = 0;
+  }
 } catch (e) {
   console.log(`viewer test: FAILED, ${e.stack || e}`);
 } finally {
