@@ -36,14 +36,16 @@ struct ModeText {
 // In the order of the pipeline (paper §2.2-2.4), so the page reads as the method runs.
 const ModeText kModes[] = {
     {RenderMode::triangulation, "Fig. 1c", "Feature triangulation",
-     "The features' image points joined by a constrained Delaunay triangulation; red: the border polygon "
-     "(border features in the order the mesh border meets them). Each triangle becomes one patch of the mesh."},
+     "The features' image points joined by a constrained Delaunay triangulation; dark: the border polygon "
+     "(border features in the order the mesh border meets them), red: the inner edges, which become the cut "
+     "paths. Each triangle becomes one patch of the mesh."},
     {RenderMode::paths, "Fig. 1d", "Cut paths on the mesh",
-     "Approximate shortest paths between the features cut the mesh into one patch per image triangle (each "
-     "patch tinted); the paths meet only at features and leave each feature in the triangulation's order."},
+     "Approximate shortest paths (red) between the features cut the mesh into one patch per image triangle "
+     "(each patch tinted; dark: the mesh border); the paths meet only at features and leave each feature in "
+     "the triangulation's order."},
     {RenderMode::uv, "Fig. 1e/g", "UV layout over the image",
-     "Every mesh triangle where it lands in the image (white), the cut paths (red) and the features (dots): each "
-     "feature exactly on its image point, no triangle flipped."},
+     "Every mesh triangle where it lands in the image (white), the cut paths (red), the mesh border (dark) and "
+     "the features (dots): each feature exactly on its image point, no triangle flipped."},
     {RenderMode::checker, "Fig. 1i", "Checker (distortion)",
      "A checker in image space carried onto the mesh: squares that stay square and even show a low-distortion "
      "map; stretched or sheared squares show where the constraints pull."},

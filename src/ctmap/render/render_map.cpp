@@ -571,23 +571,23 @@ void add_segment(std::vector<MarkVertex>& out, const Vec3& a, const Vec3& b, con
     out.push_back({{float(b.x()), float(b.y()), float(b.z())}, {c[0], c[1], c[2], c[3]}});
 }
 
-/// Per face edge (face, corner k: edge from corner k to k+1), whether it lies on the mesh border
-/// or between two patches: the cut paths and the border, drawn in `uv` and `paths`.
-std::vector<std::array<bool, 3>> patch_border_edges(const TexturedMesh& m) {
+/// Per face edge (face f, corner k: the edge from corner k to k+1): kInner, kPath (between two
+/// patches: a cut path) or kBorder (the mesh border), for the uv and paths pictures.
+enum EdgeKind : char { kInner = 0, kPath = 1, kBorder = 2 };
+std::vector<std::array<char, 3>> edge_kinds(const TexturedMesh& m) {
     std::unordered_map<std::uint64_t, std::vector<int>> edge_faces;
     auto key = [](int a, int b) { return (std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b)); };
     const auto& faces = m.mesh.faces;
     for (int f = 0; f < int(faces.size()); ++f)
         for (int k = 0; k < 3; ++k) edge_faces[key(faces[f][k], faces[f][(k + 1) % 3])].push_back(f);
-    std::vector<std::array<bool, 3>> border(faces.size(), {false, false, false});
+    std::vector<std::array<char, 3>> kind(faces.size(), {kInner, kInner, kInner});
     for (int f = 0; f < int(faces.size()); ++f)
         for (int k = 0; k < 3; ++k) {
             const std::vector<int>& fs = edge_faces[key(faces[f][k], faces[f][(k + 1) % 3])];
-            bool b = fs.size() != 2;
-            if (!b && !m.patch.empty()) b = m.patch[fs[0]] != m.patch[fs[1]];
-            border[f][k] = b;
+            if (fs.size() != 2) kind[f][k] = kBorder;
+            else if (!m.patch.empty() && m.patch[fs[0]] != m.patch[fs[1]]) kind[f][k] = kPath;
         }
-    return border;
+    return kind;
 }
 
 std::vector<Vec3> vertex_normals(const TriMesh& m) {
@@ -778,24 +778,19 @@ Image render_map(const RenderScene& scene, const RenderOptions& options) {
     auto uv_point = [&](const Vec2& uv) { return Vec3(uv.x() * cam.uv_aspect, uv.y(), 0); };
     if (mode == RenderMode::uv || mode == RenderMode::paths) {
         const TexturedMesh& m = *scene.mesh;
-        const auto border = patch_border_edges(m);
-        std::map<std::pair<int, int>, bool> drawn;  // UV edges once (two faces share them)
+        const auto kind = edge_kinds(m);
+        std::map<std::pair<int, int>, bool> drawn;  // inner UV edges once (two faces share them)
         for (std::size_t f = 0; f < m.mesh.faces.size(); ++f)
             for (int k = 0; k < 3; ++k) {
                 const int k1 = (k + 1) % 3;
+                const Rgba& colour = kind[f][k] == kBorder ? kMeshBorderColour : kPathColour;
                 if (mode == RenderMode::uv) {
                     const int a = m.uv_faces[f][k], b = m.uv_faces[f][k1];
                     const Vec3 pa = uv_point(m.uvs[a]), pb = uv_point(m.uvs[b]);
-                    if (border[f][k]) {
-                        add_segment(thick, pa, pb, kPathColour);
-                    } else if (!drawn.emplace(std::minmax(a, b), true).second) {
-                        continue;
-                    } else {
-                        add_segment(thin, pa, pb, {1, 1, 1, 0.55f});
-                    }
-                } else if (border[f][k]) {
-                    add_segment(thick, m.mesh.positions[m.mesh.faces[f][k]], m.mesh.positions[m.mesh.faces[f][k1]],
-                                kPathColour);
+                    if (kind[f][k] != kInner) add_segment(thick, pa, pb, colour);
+                    else if (drawn.emplace(std::minmax(a, b), true).second) add_segment(thin, pa, pb, {1, 1, 1, 0.55f});
+                } else if (kind[f][k] != kInner) {
+                    add_segment(thick, m.mesh.positions[m.mesh.faces[f][k]], m.mesh.positions[m.mesh.faces[f][k1]], colour);
                 }
             }
     }
@@ -804,7 +799,7 @@ Image render_map(const RenderScene& scene, const RenderOptions& options) {
         for (std::size_t e = 0; e < t.edges.size(); ++e) {
             const bool on_border = e < t.edge_on_border.size() && t.edge_on_border[e];
             add_segment(thick, uv_point(t.points[t.edges[e][0]]), uv_point(t.points[t.edges[e][1]]),
-                        on_border ? kPathColour : Rgba{1.0f, 0.85f, 0.1f, 1});
+                        on_border ? kMeshBorderColour : kPathColour);
         }
     }
     if (!three_d) {  // the image's frame
