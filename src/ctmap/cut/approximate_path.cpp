@@ -4,42 +4,33 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <unordered_map>
 
 namespace ctmap {
 namespace {
 
 bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.end(), x) != v.end(); }
 
-/// The Steiner graph, implicit: nodes are vertices, then the points of each edge in turn.
+/// The Steiner graph, implicit and local: nodes are vertices (their index) and the points of
+/// edges (a tagged key of edge and index), the number of points on an edge computed when the
+/// search meets it. Nothing is proportional to the mesh, so a search costs what it explores: the
+/// cut runs hundreds of searches on meshes of millions of faces.
 class SteinerGraph {
 public:
-    SteinerGraph(const WorkMesh& m, const PathConstraints& c, double spacing) : m_(m), c_(c) {
-        const int ne = int(m.edges.size());
-        offset_.resize(ne + 1);
-        offset_[0] = 0;
-        for (int e = 0; e < ne; ++e) {
-            const int a = key_lo(m.edges[e]), b = key_hi(m.edges[e]);
-            int n = 0;
-            if (!m.is_border_edge(e) && !c.path_edges->count(m.edges[e])) {
-                n = int((m.positions[a] - m.positions[b]).norm() / spacing);
-                if (n == 0 && blocked(a) && blocked(b)) n = 1;  // keep a way between blocked ends
-            }
-            offset_[e + 1] = offset_[e] + n;
-        }
+    using Node = std::uint64_t;
+    SteinerGraph(const WorkMesh& m, const PathConstraints& c, double spacing) : m_(m), c_(c), spacing_(spacing) {}
+    int count(int e) const {
+        if (!m_.is_live_edge(e) || m_.is_border_edge(e) || c_.path_edges->count(m_.edges[e])) return 0;
+        const int a = key_lo(m_.edges[e]), b = key_hi(m_.edges[e]);
+        const int n = int(std::min(double(kMaxPoints), (m_.positions[a] - m_.positions[b]).norm() / spacing_));
+        return n == 0 && blocked(a) && blocked(b) ? 1 : n;  // keep a way between blocked ends
     }
-    int nv() const { return m_.num_vertices(); }
-    int size() const { return nv() + offset_.back(); }
-    int count(int e) const { return offset_[e + 1] - offset_[e]; }
-    int node(int e, int j) const { return nv() + offset_[e] + j; }
-    bool is_vertex(int x) const { return x < nv(); }
+    static Node node(int e, int j) { return kSteiner | (Node(e) << 20) | Node(j); }
+    static bool is_vertex(Node x) { return !(x & kSteiner); }
     /// Edge and index of a Steiner node.
-    std::pair<int, int> locate(int x) const {
-        const int k = x - nv();
-        const int e = int(std::upper_bound(offset_.begin(), offset_.end(), k) - offset_.begin()) - 1;
-        return {e, k - offset_[e]};
-    }
+    static std::pair<int, int> locate(Node x) { return {int((x & ~kSteiner) >> 20), int(x & (kMaxPoints - 1))}; }
     double t_of(int e, int j) const { return double(j + 1) / double(count(e) + 1); }
-    Vec3 position(int x) const {
+    Vec3 position(Node x) const {
         if (is_vertex(x)) return m_.positions[x];
         auto [e, j] = locate(x);
         const Vec3& a = m_.positions[key_lo(m_.edges[e])];
@@ -51,8 +42,9 @@ public:
 
     /// Calls fn(next_node, face) for every move out of `x` (face = -1 for a move along an edge).
     template <class Fn>
-    void for_each_move(int x, Fn&& fn) const {
-        if (is_vertex(x)) {
+    void for_each_move(Node node_x, Fn&& fn) const {
+        if (is_vertex(node_x)) {
+            const int x = int(node_x);
             const bool src = x == c_.source;
             for (int f : m_.vertex_faces[x]) {
                 if (src && !contains(c_.source_sector.faces, f)) continue;
@@ -60,15 +52,15 @@ public:
                 const int k = t[0] == x ? 0 : t[1] == x ? 1 : 2;
                 const int p = t[(k + 1) % 3], q = t[(k + 2) % 3];
                 const int e = m_.find_edge(p, q);
-                for (int j = 0; j < count(e); ++j) fn(node(e, j), f);
+                for (int j = 0, n = count(e); j < n; ++j) fn(node(e, j), f);
                 // Edge moves: each edge (x, q) is met once, as the `to` side of a face.
-                if (!path_edge(x, q) && (!src || contains(c_.source_sector.edge_neighbours, q))) fn(q, -1);
+                if (!path_edge(x, q) && (!src || contains(c_.source_sector.edge_neighbours, q))) fn(Node(q), -1);
                 if (m_.is_border_edge(m_.find_edge(x, p)) && !path_edge(x, p) &&
                     (!src || contains(c_.source_sector.edge_neighbours, p)))
-                    fn(p, -1);
+                    fn(Node(p), -1);
             }
         } else {
-            auto [e, j] = locate(x);
+            const int e = locate(node_x).first;
             for (int f : m_.edge_faces[e]) {
                 if (f < 0) continue;
                 const Tri& t = m_.faces[f];
@@ -76,9 +68,9 @@ public:
                     const int a = t[k], b = t[(k + 1) % 3];
                     const int g = m_.find_edge(a, b);
                     if (g == e) {
-                        fn(t[(k + 2) % 3], f);  // the opposite corner
+                        fn(Node(t[(k + 2) % 3]), f);  // the opposite corner
                     } else {
-                        for (int i = 0; i < count(g); ++i) fn(node(g, i), f);
+                        for (int i = 0, n = count(g); i < n; ++i) fn(node(g, i), f);
                     }
                 }
             }
@@ -86,68 +78,86 @@ public:
     }
 
     /// Whether a move from `from` into the vertex `v` through `face` may end there.
-    bool may_enter_vertex(int from, int v, int face) const {
+    bool may_enter_vertex(Node from, int v, int face) const {
         if (v == c_.source || blocked(v)) return false;
         if (v != c_.target) return true;
         if (face >= 0) return contains(c_.target_sector.faces, face);
-        return contains(c_.target_sector.edge_neighbours, from);
+        return is_vertex(from) && contains(c_.target_sector.edge_neighbours, int(from));
     }
 
 private:
+    static constexpr int kMaxPoints = 1 << 20;
+    static constexpr Node kSteiner = Node(1) << 63;
     const WorkMesh& m_;
     const PathConstraints& c_;
-    std::vector<int> offset_;
+    double spacing_;
+};
+
+/// Search state of one node.
+struct NodeState {
+    double dist = std::numeric_limits<double>::infinity();
+    SteinerGraph::Node pred = ~SteinerGraph::Node(0);
+    int pred_face = -1;
+    bool done = false;
 };
 
 }  // namespace
 
 std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& c, const PathSearchOptions& opt) {
+    using Node = SteinerGraph::Node;
     const SteinerGraph g(mesh, c, opt.spacing);
-    const int n = g.size();
     const Vec3 goal = mesh.positions[c.target];
-    std::vector<double> dist(n, std::numeric_limits<double>::infinity());
-    std::vector<int> pred(n, -1), pred_face(n, -1);
-    std::vector<char> done(n, 0);
-    using Item = std::pair<double, int>;  // (distance + bound, node)
+    std::unordered_map<Node, NodeState> state;
+    state.reserve(4096);
+    using Item = std::pair<double, Node>;  // (distance + bound, node)
     std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-    dist[c.source] = 0;
-    open.push({(mesh.positions[c.source] - goal).norm(), c.source});
+    const Node source = Node(c.source), target = Node(c.target);
+    state[source].dist = 0;
+    open.push({(mesh.positions[c.source] - goal).norm(), source});
+    bool reached = false;
     while (!open.empty()) {
-        const int x = open.top().second;
+        const Node x = open.top().second;
         open.pop();
-        if (done[x]) continue;
-        done[x] = 1;
-        if (x == c.target) break;
-        if (x != c.source && g.is_vertex(x) && g.blocked(x)) continue;
+        NodeState& sx = state[x];
+        if (sx.done) continue;
+        sx.done = true;
+        if (x == target) {
+            reached = true;
+            break;
+        }
+        if (x != source && g.is_vertex(x) && g.blocked(int(x))) continue;
         const Vec3 px = g.position(x);
-        g.for_each_move(x, [&](int y, int face) {
-            if (done[y]) return;
-            if (g.is_vertex(y) && !g.may_enter_vertex(x, y, face)) return;
+        const double dx = sx.dist;
+        g.for_each_move(x, [&](Node y, int face) {
+            if (g.is_vertex(y) && !g.may_enter_vertex(x, int(y), face)) return;
+            NodeState& sy = state[y];  // may rehash: no reference to sx is used after this
+            if (sy.done) return;
             const Vec3 py = g.position(y);
-            const double d = dist[x] + (py - px).norm();
-            if (d < dist[y]) {
-                dist[y] = d;
-                pred[y] = x;
-                pred_face[y] = face;
+            const double d = dx + (py - px).norm();
+            if (d < sy.dist) {
+                sy.dist = d;
+                sy.pred = x;
+                sy.pred_face = face;
                 open.push({d + (py - goal).norm(), y});
             }
         });
     }
-    if (!done[c.target]) return std::nullopt;
+    if (!reached) return std::nullopt;
     FoundPath out;
-    out.length = dist[c.target];
-    for (int x = c.target; x >= 0; x = pred[x]) {
+    out.length = state[target].dist;
+    for (Node x = target;; x = state[x].pred) {
+        const NodeState& sx = state[x];
         PathNode node;
-        if (g.is_vertex(x)) node.vertex = x;
+        if (g.is_vertex(x)) node.vertex = int(x);
         else {
             auto [e, j] = g.locate(x);
             node.a = key_lo(mesh.edges[e]);
             node.b = key_hi(mesh.edges[e]);
             node.t = g.t_of(e, j);
         }
-        node.face = pred_face[x];
+        node.face = sx.pred_face;
         out.nodes.push_back(node);
-        if (x == c.source) break;
+        if (x == source) break;
     }
     std::reverse(out.nodes.begin(), out.nodes.end());
     return out;
