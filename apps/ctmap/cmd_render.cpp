@@ -117,7 +117,7 @@ Command add_render_command(CLI::App& app) {
         ->check(CLI::IsMember({"front", "side", "back", "top", "three-quarter"}))
         ->capture_default_str();
     sub->add_option("--size", args->size,
-                    "W or WxH pixels (W alone: square in 3D, the image's aspect for uv and triangulation)")
+                    "W or WxH pixels (W alone: square in 3D; for uv and triangulation, the shown region's aspect)")
         ->capture_default_str();
     sub->add_option("--background", args->background, "white | black | transparent | #rrggbb | #rrggbbaa")
         ->capture_default_str();
