@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include "ctmap/io/features.h"
 #include "ctmap/io/image.h"
@@ -300,12 +301,13 @@ TEST(Render, CheckerModeShowsBothCheckerColoursOnTheMesh) {
 
 TEST(Render, UvModeDrawsEachFeatureMarkerAtItsUv) {
     const Example& e = example();
-    const Image grey = filled(512, 512, kGrey);
-    RenderScene scene;
-    scene.mesh = &e.textured;
-    scene.image = &grey;
-    scene.feature_uv = e.map.feature_uv;
-    for (bool whole : {false, true}) {
+    // A square image and a wide one: UVs stretch with the image, the markers must follow.
+    for (const auto& [w, h, whole] : {std::tuple{512, 512, false}, std::tuple{512, 512, true}, std::tuple{900, 300, true}}) {
+        const Image grey = filled(w, h, kGrey);
+        RenderScene scene;
+        scene.mesh = &e.textured;
+        scene.image = &grey;
+        scene.feature_uv = e.map.feature_uv;
         RenderOptions opt;
         opt.width = 800;
         opt.height = 640;
@@ -319,7 +321,8 @@ TEST(Render, UvModeDrawsEachFeatureMarkerAtItsUv) {
             const Vec3 q = cam.project_uv(uv);
             const std::array<std::uint8_t, 3> c = feature_colour(int(i));
             const Rgb got = pixel(img, int(std::floor(q.x())), int(std::floor(q.y())));
-            EXPECT_LE(max_channel_difference(got, {c[0], c[1], c[2]}), 8) << "feature " << i << " whole image " << whole;
+            EXPECT_LE(max_channel_difference(got, {c[0], c[1], c[2]}), 8)
+                << "feature " << i << ", image " << w << " x " << h << ", whole image " << whole;
         }
     }
 }
