@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <queue>
-#include <unordered_map>
 
 namespace ctmap {
 namespace {
@@ -101,24 +100,73 @@ struct NodeState {
     bool done = false;
 };
 
+/// The search state of every node met, in arrays that live as long as the thread and are
+/// reset lazily by a stamp: no per-search cost proportional to the mesh, and no hashing. Edge
+/// points get their slots when the search first meets their edge.
+class SearchState {
+public:
+    void begin(const WorkMesh& m) {
+        if (++stamp_ == 0) {  // wrapped: forget every old stamp
+            std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0);
+            std::fill(edge_stamp_.begin(), edge_stamp_.end(), 0);
+            stamp_ = 1;
+        }
+        if (vertex_stamp_.size() < m.positions.size()) {
+            vertex_stamp_.resize(m.positions.size() + m.positions.size() / 4, 0);
+            vertex_state_.resize(vertex_stamp_.size());
+        }
+        if (edge_stamp_.size() < m.edges.size()) {
+            edge_stamp_.resize(m.edges.size() + m.edges.size() / 4, 0);
+            edge_base_.resize(edge_stamp_.size());
+        }
+        points_used_ = 0;
+    }
+    NodeState& at(const SteinerGraph& g, SteinerGraph::Node x) {
+        if (g.is_vertex(x)) {
+            if (vertex_stamp_[x] != stamp_) {
+                vertex_stamp_[x] = stamp_;
+                vertex_state_[x] = NodeState();
+            }
+            return vertex_state_[x];
+        }
+        auto [e, j] = g.locate(x);
+        if (edge_stamp_[e] != stamp_) {
+            edge_stamp_[e] = stamp_;
+            edge_base_[e] = points_used_;
+            points_used_ += std::size_t(g.count(e));
+            if (point_state_.size() < points_used_) point_state_.resize(points_used_ * 2);
+            std::fill(point_state_.begin() + edge_base_[e], point_state_.begin() + points_used_, NodeState());
+        }
+        return point_state_[edge_base_[e] + j];
+    }
+
+private:
+    std::uint32_t stamp_ = 0;
+    std::vector<std::uint32_t> vertex_stamp_, edge_stamp_;
+    std::vector<NodeState> vertex_state_, point_state_;
+    std::vector<std::size_t> edge_base_;
+    std::size_t points_used_ = 0;
+};
+
 }  // namespace
 
 std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& c, const PathSearchOptions& opt) {
     using Node = SteinerGraph::Node;
     const SteinerGraph g(mesh, c, opt.spacing);
     const Vec3 goal = mesh.positions[c.target];
-    std::unordered_map<Node, NodeState> state;
-    state.reserve(4096);
+    thread_local SearchState states;
+    states.begin(mesh);
+    auto state = [&](Node x) -> NodeState& { return states.at(g, x); };
     using Item = std::pair<double, Node>;  // (distance + bound, node)
     std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
     const Node source = Node(c.source), target = Node(c.target);
-    state[source].dist = 0;
+    state(source).dist = 0;
     open.push({(mesh.positions[c.source] - goal).norm(), source});
     bool reached = false;
     while (!open.empty()) {
         const Node x = open.top().second;
         open.pop();
-        NodeState& sx = state[x];
+        NodeState& sx = state(x);
         if (sx.done) continue;
         sx.done = true;
         if (x == target) {
@@ -130,7 +178,7 @@ std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& 
         const double dx = sx.dist;
         g.for_each_move(x, [&](Node y, int face) {
             if (g.is_vertex(y) && !g.may_enter_vertex(x, int(y), face)) return;
-            NodeState& sy = state[y];  // may rehash: no reference to sx is used after this
+            NodeState& sy = state(y);  // may grow the arrays: no reference to sx is used after this
             if (sy.done) return;
             const Vec3 py = g.position(y);
             const double d = dx + (py - px).norm();
@@ -144,9 +192,9 @@ std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& 
     }
     if (!reached) return std::nullopt;
     FoundPath out;
-    out.length = state[target].dist;
-    for (Node x = target;; x = state[x].pred) {
-        const NodeState& sx = state[x];
+    out.length = state(target).dist;
+    for (Node x = target;; x = state(x).pred) {
+        const NodeState& sx = state(x);
         PathNode node;
         if (g.is_vertex(x)) node.vertex = int(x);
         else {
