@@ -4,7 +4,10 @@
 // times; file reading excluded), and in the same process CGAL's unconstrained mean value
 // parameterization of the same mesh with a circular border, the yardstick. Prints one JSON object.
 //
-//   scaling_row MESH [--levels L] [--features N] [--runs R] [--seed S] [--no-cgal]
+//   scaling_row MESH [--levels L] [--features N] [--runs R] [--cgal-runs K] [--seed S]
+//
+// CGAL's time does not depend on the features, and on the largest mesh one run of it takes
+// minutes, so bench/run measures it on one row per mesh (--cgal-runs 0 skips it).
 #include <sys/resource.h>
 
 #include <CGAL/Simple_cartesian.h>
@@ -66,13 +69,13 @@ long peak_rss_mb() {
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::cerr << "usage: scaling_row MESH [--levels L] [--features N] [--runs R] [--seed S] [--no-cgal]\n";
+        std::cerr << "usage: scaling_row MESH [--levels L] [--features N] [--runs R] [--cgal-runs K] [--seed S] [--energy-tolerance T]\n";
         return 2;
     }
     const std::string path = argv[1];
-    int levels = 0, features = 10, runs = 3;
+    int levels = 0, features = 10, runs = 3, cgal_runs = -1;
     unsigned seed = 1;
-    bool with_cgal = true;
+    double energy_tolerance = MapOptions().relax.energy_tolerance;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&] { return i + 1 < argc ? std::stoi(argv[++i]) : 0; };
@@ -80,8 +83,11 @@ int main(int argc, char** argv) {
         else if (a == "--features") features = next();
         else if (a == "--runs") runs = next();
         else if (a == "--seed") seed = unsigned(next());
-        else if (a == "--no-cgal") with_cgal = false;
+        else if (a == "--cgal-runs") cgal_runs = next();
+        else if (a == "--energy-tolerance" && i + 1 < argc) energy_tolerance = std::stod(argv[++i]);
     }
+    if (cgal_runs < 0) cgal_runs = runs;
+    const bool with_cgal = cgal_runs > 0;
     try {
         const TriMesh mesh = subdivide_midpoint(read_mesh(path), levels);
         std::mt19937 rng(seed);
@@ -98,7 +104,9 @@ int main(int argc, char** argv) {
         MapResult last;
         bool cgal_ok = true;
         for (int r = 0; r < runs; ++r) {
-            last = map_texture(mesh, mf);
+            MapOptions options;
+            options.relax.energy_tolerance = energy_tolerance;
+            last = map_texture(mesh, mf, options);
             tri.push_back(last.timings_ms.triangulate);
             paths.push_back(last.timings_ms.paths);
             embed.push_back(last.timings_ms.embed);
@@ -106,7 +114,7 @@ int main(int argc, char** argv) {
             certify.push_back(last.timings_ms.certify);
             total.push_back(last.timings_ms.total);
             // Alternate with the yardstick so that both see the same machine load.
-            if (with_cgal) cgal.push_back(cgal_mean_value_ms(mesh, cgal_ok));
+            if (r < cgal_runs) cgal.push_back(cgal_mean_value_ms(mesh, cgal_ok));
         }
         nlohmann::json j;
         j["mesh"] = path.substr(path.find_last_of('/') + 1);
@@ -117,6 +125,7 @@ int main(int argc, char** argv) {
         j["ms"] = {{"triangulate", median(tri)}, {"paths", median(paths)}, {"embed", median(embed)},
                    {"refine", median(refine)},   {"certify", median(certify)}, {"total", median(total)}};
         j["cgal_mean_value_ms"] = with_cgal ? nlohmann::json(median(cgal)) : nlohmann::json(nullptr);
+        j["cgal_runs"] = cgal_runs;
         j["cgal_ok"] = cgal_ok;
         j["ratio"] = with_cgal ? nlohmann::json(median(total) / median(cgal)) : nlohmann::json(nullptr);
         j["inserted_vertices"] = last.cut_stats.inserted_vertices;

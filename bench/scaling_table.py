@@ -1,0 +1,131 @@
+#!/usr/bin/env python3
+"""Turns bench/run's rows (JSON lines from scaling_row) into the markdown table of BENCHMARKS.md's
+"Scaling" section and a log-log plot of total time against triangles (gnuplot, PNG).
+
+    scaling_table.py ROWS.jsonl [--plot OUT.png] [--markdown BENCHMARKS.md] [--command C] [--machine M]
+
+Without --markdown the table is printed. The section is replaced between its markers, so the
+other sections of BENCHMARKS.md (written by other benchmarks) are left as they are.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+BEGIN = "<!-- scaling:begin (bench/run writes this section) -->"
+END = "<!-- scaling:end -->"
+
+
+def fmt_ms(x):
+    return "—" if x is None else (f"{x:.0f}" if x >= 100 else f"{x:.1f}")
+
+
+def slope(rows, lo, hi):
+    """Log-log slope of total time between the rows with `lo` and `hi` triangles (same features)."""
+    out = {}
+    for n in sorted({r["features"] for r in rows}):
+        a = [r for r in rows if r["triangles"] == lo and r["features"] == n]
+        b = [r for r in rows if r["triangles"] == hi and r["features"] == n]
+        if a and b:
+            out[n] = math.log(b[0]["ms"]["total"] / a[0]["ms"]["total"]) / math.log(hi / lo)
+    return out
+
+
+def table(rows):
+    head = ("| mesh | triangles | features | triangulate | paths | embed | refine | certify | **total** (ms) "
+            "| CGAL MVC (ms) | ratio | peak MB | inserted | valid |")
+    lines = [head, "|" + "---|" * 14]
+    for r in rows:
+        name = r["mesh"].replace(".off", "") + (f" ×{4 ** r['levels']}" if r["levels"] else "")
+        ms = r["ms"]
+        ratio = r.get("ratio")
+        lines.append(
+            f"| {name} | {r['triangles']:,} | {r['features']} | {fmt_ms(ms['triangulate'])} | {fmt_ms(ms['paths'])} "
+            f"| {fmt_ms(ms['embed'])} | {fmt_ms(ms['refine'])} | {fmt_ms(ms['certify'])} | **{fmt_ms(ms['total'])}** "
+            f"| {fmt_ms(r.get('cgal_mean_value_ms'))} | {'—' if ratio is None else f'{ratio:.2f}'} "
+            f"| {r['peak_rss_mb']} | {r['inserted_vertices']:,} | {'yes' if r['valid'] else '**NO**'} |")
+    return "\n".join(lines)
+
+
+def plot(rows, path):
+    with tempfile.TemporaryDirectory() as tmp:
+        series = []
+        for n in sorted({r["features"] for r in rows}):
+            pts = sorted((r["triangles"], r["ms"]["total"] / 1000) for r in rows if r["features"] == n)
+            f = os.path.join(tmp, f"ctmap_{n}.dat")
+            with open(f, "w") as out:
+                out.writelines(f"{t} {s}\n" for t, s in pts)
+            series.append(f"'{f}' using 1:2 with linespoints lw 2 pt 7 title 'ctmap, {n} features'")
+        cg = sorted({(r["triangles"], r["cgal_mean_value_ms"] / 1000) for r in rows if r.get("cgal_mean_value_ms")})
+        f = os.path.join(tmp, "cgal.dat")
+        with open(f, "w") as out:
+            out.writelines(f"{t} {s}\n" for t, s in cg)
+        series.append(f"'{f}' using 1:2 with linespoints lw 2 dt 2 pt 6 title 'CGAL mean value (unconstrained)'")
+        script = "\n".join([
+            "set terminal png size 900,600 font ',11'",
+            f"set output '{path}'",
+            "set logscale xy", "set grid",
+            "set xlabel 'triangles'", "set ylabel 'seconds (median)'",
+            "set key top left",
+            "set title 'ctmap: whole constrained pipeline vs CGAL mean value parameterization'",
+            "plot " + ", ".join(series),
+        ])
+        subprocess.run(["gnuplot"], input=script, text=True, check=True)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("rows")
+    ap.add_argument("--plot")
+    ap.add_argument("--markdown")
+    ap.add_argument("--command", default="bench/run")
+    ap.add_argument("--machine", default="")
+    a = ap.parse_args()
+    rows = [json.loads(l) for l in open(a.rows) if l.strip().startswith("{")]
+    # CGAL is measured on one row per mesh: the other rows of that mesh share its time.
+    cgal = {(r["mesh"], r["levels"]): r["cgal_mean_value_ms"] for r in rows if r.get("cgal_mean_value_ms")}
+    for r in rows:
+        c = cgal.get((r["mesh"], r["levels"]))
+        r["cgal_mean_value_ms"] = c
+        r["ratio"] = r["ms"]["total"] / c if c else None
+    text = table(rows)
+    tri = sorted({r["triangles"] for r in rows if r["mesh"].startswith("mannequin")})
+    slopes = slope(rows, tri[1], tri[-1]) if len(tri) >= 3 else {}
+    if a.plot:
+        plot(rows, a.plot)
+    if not a.markdown:
+        print(text)
+        for n, s in slopes.items():
+            print(f"log-log slope x4 -> x64, {n} features: {s:.2f}")
+        return
+    body = [BEGIN, "## Scaling: ctmap against CGAL's mean value parameterization", "",
+            f"Command: `{a.command}` (rows from `build/bench/scaling_row`, one process per row). "
+            f"Machine: {a.machine}.", "",
+            "Times are medians over the runs of each row, in milliseconds, without file reading. "
+            "*CGAL MVC* is CGAL's own unconstrained `Mean_value_coordinates_parameterizer_3` with a "
+            "circular arc-length border on the same mesh, timed in the same process between ctmap's runs; "
+            "*ratio* = ctmap total / CGAL. Features are random feasible sets (tests/random_features.h, "
+            "twist 1 rad). *inserted* = vertices the cut added; *valid* = ctmap's certificate.", "",
+            text, ""]
+    if slopes:
+        body.append("Log-log slope of the total time from mannequin-devil ×4 to ×64: " +
+                    ", ".join(f"{s:.2f} ({n} features)" for n, s in slopes.items()) + ".")
+        body.append("")
+    if a.plot:
+        body += [f"![total time against triangles]({os.path.relpath(a.plot, os.path.dirname(a.markdown) or '.')})", ""]
+    body.append(END)
+    section = "\n".join(body)
+    old = open(a.markdown).read() if os.path.exists(a.markdown) else "# Benchmarks\n"
+    if BEGIN in old and END in old:
+        new = old[:old.index(BEGIN)] + section + old[old.index(END) + len(END):]
+    else:
+        new = old.rstrip("\n") + "\n\n" + section + "\n"
+    open(a.markdown, "w").write(new)
+    print(f"wrote {a.markdown}" + (f" and {a.plot}" if a.plot else ""), file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
