@@ -14,11 +14,17 @@ bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.
 /// edges (a tagged key of edge and index), the number of points on an edge computed when the
 /// search meets it. Nothing is proportional to the mesh, so a search costs what it explores: the
 /// cut runs hundreds of searches on meshes of millions of faces.
+class SearchState;
+
 class SteinerGraph {
 public:
     using Node = std::uint64_t;
-    SteinerGraph(const WorkMesh& m, const PathConstraints& c, double spacing) : m_(m), c_(c), spacing_(spacing) {}
-    int count(int e) const {
+    SteinerGraph(const WorkMesh& m, const PathConstraints& c, double spacing, SearchState& state)
+        : m_(m), c_(c), spacing_(spacing), state_(state) {}
+    /// Number of points on edge e, from the search's cache (computed once per search and edge).
+    inline int count(int e) const;
+    /// Number of points on edge e, computed.
+    int compute_count(int e) const {
         if (!m_.is_live_edge(e) || m_.is_border_edge(e) || c_.path_edges->count(m_.edges[e])) return 0;
         const int a = key_lo(m_.edges[e]), b = key_hi(m_.edges[e]);
         const int n = int(std::min(double(kMaxPoints), (m_.positions[a] - m_.positions[b]).norm() / spacing_));
@@ -50,11 +56,11 @@ public:
                 const Tri& t = m_.faces[f];
                 const int k = t[0] == x ? 0 : t[1] == x ? 1 : 2;
                 const int p = t[(k + 1) % 3], q = t[(k + 2) % 3];
-                const int e = m_.find_edge(p, q);
+                const int e = m_.face_edges[f][(k + 1) % 3];
                 for (int j = 0, n = count(e); j < n; ++j) fn(node(e, j), f);
                 // Edge moves: each edge (x, q) is met once, as the `to` side of a face.
                 if (!path_edge(x, q) && (!src || contains(c_.source_sector.edge_neighbours, q))) fn(Node(q), -1);
-                if (m_.is_border_edge(m_.find_edge(x, p)) && !path_edge(x, p) &&
+                if (m_.is_border_edge(m_.face_edges[f][k]) && !path_edge(x, p) &&
                     (!src || contains(c_.source_sector.edge_neighbours, p)))
                     fn(Node(p), -1);
             }
@@ -64,8 +70,7 @@ public:
                 if (f < 0) continue;
                 const Tri& t = m_.faces[f];
                 for (int k = 0; k < 3; ++k) {
-                    const int a = t[k], b = t[(k + 1) % 3];
-                    const int g = m_.find_edge(a, b);
+                    const int g = m_.face_edges[f][k];
                     if (g == e) {
                         fn(Node(t[(k + 2) % 3]), f);  // the opposite corner
                     } else {
@@ -90,6 +95,7 @@ private:
     const WorkMesh& m_;
     const PathConstraints& c_;
     double spacing_;
+    SearchState& state_;
 };
 
 /// Search state of one node.
@@ -118,6 +124,7 @@ public:
         if (edge_stamp_.size() < m.edges.size()) {
             edge_stamp_.resize(m.edges.size() + m.edges.size() / 4, 0);
             edge_base_.resize(edge_stamp_.size());
+            edge_points_.resize(edge_stamp_.size());
         }
         points_used_ = 0;
     }
@@ -130,14 +137,20 @@ public:
             return vertex_state_[x];
         }
         auto [e, j] = g.locate(x);
+        edge_count(g, e);
+        return point_state_[edge_base_[e] + j];
+    }
+    /// The points on edge e; the first call of a search computes them and reserves their slots.
+    int edge_count(const SteinerGraph& g, int e) {
         if (edge_stamp_[e] != stamp_) {
             edge_stamp_[e] = stamp_;
             edge_base_[e] = points_used_;
-            points_used_ += std::size_t(g.count(e));
+            edge_points_[e] = g.compute_count(e);
+            points_used_ += std::size_t(edge_points_[e]);
             if (point_state_.size() < points_used_) point_state_.resize(points_used_ * 2);
             std::fill(point_state_.begin() + edge_base_[e], point_state_.begin() + points_used_, NodeState());
         }
-        return point_state_[edge_base_[e] + j];
+        return edge_points_[e];
     }
 
 private:
@@ -145,17 +158,20 @@ private:
     std::vector<std::uint32_t> vertex_stamp_, edge_stamp_;
     std::vector<NodeState> vertex_state_, point_state_;
     std::vector<std::size_t> edge_base_;
+    std::vector<int> edge_points_;
     std::size_t points_used_ = 0;
 };
+
+int SteinerGraph::count(int e) const { return state_.edge_count(*this, e); }
 
 }  // namespace
 
 std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& c, const PathSearchOptions& opt) {
     using Node = SteinerGraph::Node;
-    const SteinerGraph g(mesh, c, opt.spacing);
-    const Vec3 goal = mesh.positions[c.target];
     thread_local SearchState states;
     states.begin(mesh);
+    const SteinerGraph g(mesh, c, opt.spacing, states);
+    const Vec3 goal = mesh.positions[c.target];
     auto state = [&](Node x) -> NodeState& { return states.at(g, x); };
     using Item = std::pair<double, Node>;  // (distance + bound, node)
     std::priority_queue<Item, std::vector<Item>, std::greater<>> open;

@@ -18,11 +18,13 @@ void WorkMesh::rebuild() {
     edge_faces.clear();
     edge_id.reserve(faces.size() * 2);
     vertex_faces.assign(positions.size(), {});
+    face_edges.assign(faces.size(), {-1, -1, -1});
     for (int f = 0; f < int(faces.size()); ++f)
         for (int k = 0; k < 3; ++k) {
             const int a = faces[f][k], b = faces[f][(k + 1) % 3];
             vertex_faces[a].push_back(f);
             auto [it, fresh] = edge_id.emplace(edge_key(a, b), int(edges.size()));
+            face_edges[f][k] = it->second;
             if (fresh) {
                 edges.push_back(edge_key(a, b));
                 edge_faces.push_back({f, -1});
@@ -38,7 +40,7 @@ void WorkMesh::replace_faces(const std::vector<int>& removed, const std::vector<
     for (int f : removed) {
         const Tri& t = faces[f];
         for (int k = 0; k < 3; ++k) {
-            const int e = find_edge(t[k], t[(k + 1) % 3]);
+            const int e = face_edges[f][k];
             auto& ef = edge_faces[e];
             if (ef[0] == f) ef = {ef[1], -1};
             else if (ef[1] == f) ef[1] = -1;
@@ -58,12 +60,14 @@ void WorkMesh::replace_faces(const std::vector<int>& removed, const std::vector<
             id = int(faces.size());
             faces.push_back(added[i]);
             origin.push_back(added_origin[i]);
+            face_edges.push_back({-1, -1, -1});
         }
         const Tri& t = added[i];
         for (int k = 0; k < 3; ++k) {
             const int a = t[k], b = t[(k + 1) % 3];
             vertex_faces[a].push_back(id);
             auto [it, fresh] = edge_id.emplace(edge_key(a, b), int(edges.size()));
+            face_edges[id][k] = it->second;
             if (fresh) {
                 edges.push_back(edge_key(a, b));
                 edge_faces.push_back({id, -1});

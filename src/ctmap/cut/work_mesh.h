@@ -2,6 +2,7 @@
 /// \file work_mesh.h
 /// The mesh the cut refines: triangles that only ever get split (never flipped or moved), each
 /// remembering the input face it lies in, with the adjacency the path search needs.
+#include <array>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -29,6 +30,7 @@ struct WorkMesh {
     std::unordered_map<std::uint64_t, int> edge_id;      ///< key -> edge id
     std::vector<std::array<int, 2>> edge_faces;          ///< per edge: its faces (-1 when on the border)
     std::vector<std::vector<int>> vertex_faces;          ///< per vertex: incident faces
+    std::vector<std::array<int, 3>> face_edges;          ///< per face: edge ids of (t[k], t[k+1]), k = 0..2
 
     explicit WorkMesh(const TriMesh& m);
     void rebuild();
