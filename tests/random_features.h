@@ -2,62 +2,16 @@
 // Random feasible feature sets (issue 3, must-show 1): the image points are the images of mesh
 // vertices under a known one-to-one map of the disc — Tutte's embedding onto the unit circle,
 // then a twist whose angle grows towards the centre — so a valid constrained map always exists.
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <random>
 
 #include "ctmap/cut/work_mesh.h"
+#include "ctmap/domain/starter_features.h"
 #include "ctmap/mesh.h"
 
 namespace ctmap::test {
 
-/// Tutte's barycentric embedding with uniform weights, the border on the unit circle by arc length.
-inline std::vector<Vec2> tutte_map(const TriMesh& mesh) {
-    WorkMesh wm(mesh);
-    const std::vector<int> loop = wm.border_loop();
-    const int n = mesh.num_vertices();
-    std::vector<Vec2> uv(n, Vec2::Zero());
-    std::vector<int> index(n, -1);
-    double total = 0;
-    std::vector<double> acc{0};
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-        total += (mesh.positions[loop[(i + 1) % loop.size()]] - mesh.positions[loop[i]]).norm();
-        acc.push_back(total);
-    }
-    std::vector<char> fixed(n, 0);
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-        const double a = 2 * M_PI * acc[i] / total;
-        uv[loop[i]] = Vec2(std::cos(a), std::sin(a));
-        fixed[loop[i]] = 1;
-    }
-    int m = 0;
-    for (int v = 0; v < n; ++v)
-        if (!fixed[v]) index[v] = m++;
-    std::vector<std::vector<int>> nb(n);
-    for (std::size_t e = 0; e < wm.edges.size(); ++e) {
-        const int a = key_lo(wm.edges[e]), b = key_hi(wm.edges[e]);
-        nb[a].push_back(b);
-        nb[b].push_back(a);
-    }
-    std::vector<Eigen::Triplet<double>> trip;
-    Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(m, 2);
-    for (int v = 0; v < n; ++v) {
-        if (fixed[v]) continue;
-        trip.emplace_back(index[v], index[v], double(nb[v].size()));
-        for (int w : nb[v]) {
-            if (fixed[w]) rhs.row(index[v]) += uv[w].transpose();
-            else trip.emplace_back(index[v], index[w], -1.0);
-        }
-    }
-    Eigen::SparseMatrix<double> L(m, m);
-    L.setFromTriplets(trip.begin(), trip.end());
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
-    const Eigen::MatrixX2d x = solver.solve(rhs);
-    for (int v = 0; v < n; ++v)
-        if (!fixed[v]) uv[v] = x.row(index[v]).transpose();
-    return uv;
-}
+using ctmap::tutte_map;  // domain/starter_features.h
 
 /// A twist of the unit disc: angle += strength (1 - r^2). One-to-one, the identity on the circle.
 inline Vec2 twist(const Vec2& p, double strength) {

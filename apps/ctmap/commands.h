@@ -5,6 +5,11 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "ctmap/map_texture.h"
 
 namespace ctmap::cli {
 
@@ -14,5 +19,31 @@ struct Command {
 };
 
 Command add_render_command(CLI::App& app);  // cmd_render.cpp
+
+/// What `ctmap map` is asked to do (also used by `ctmap demo`).
+struct MapArgs {
+    std::string mesh, features, output, image, glb, report;
+    double spacing = 0;  ///< 0: the cut's default
+    bool refine = true;
+    bool quiet = false;
+};
+
+/// A map made and written by `run_map`.
+struct MapRun {
+    MapResult result;
+    std::string image;  ///< the image used (empty when only image_size was given)
+    int width = 0, height = 0;
+    std::vector<std::string> written;  ///< the files written, in order
+};
+
+/// Reads, maps (map_texture), certifies and writes OBJ + MTL (+ GLB, report) together.
+/// 	hrow BadInput / InternalError as map_texture and the readers and writers; nothing is written then.
+MapRun run_map(const MapArgs& args);
+
+/// The short human summary of a map.
+void print_map_summary(const MapArgs& args, const MapRun& run, std::ostream& os);
+
+Command add_map_command(CLI::App& app);      // cmd_map.cpp
+Command add_starter_command(CLI::App& app);  // cmd_starter.cpp
 
 }  // namespace ctmap::cli

@@ -18,6 +18,7 @@
 #include "ctmap/io/obj_io.h"
 #include "ctmap/io/read_mesh.h"
 #include "commands.h"
+#include "ctmap/render/gallery.h"
 
 namespace {
 
@@ -52,35 +53,13 @@ int cmd_info(const std::string& mesh_path, bool as_json) {
     return kExitOk;
 }
 
-/// The image size for a features set: the --image argument, else the file's `image`, else its
-/// `image_size` (issue 4's rule, used here so `validate` checks what `map` will use).
-std::string resolve_image(FeatureSet& fs, const std::string& image_arg, int& w, int& h) {
-    std::string image = !image_arg.empty() ? image_arg : fs.image;
-    if (!image.empty()) {
-        const Image img = read_image(image);
-        w = img.width;
-        h = img.height;
-        if (fs.image_size && ((*fs.image_size)[0] != w || (*fs.image_size)[1] != h))
-            throw BadInput(fs.path, "\"image_size\" [" + std::to_string((*fs.image_size)[0]) + ", " +
-                                        std::to_string((*fs.image_size)[1]) + "] differs from the size of " + image +
-                                        " (" + std::to_string(w) + " x " + std::to_string(h) + ")");
-    } else if (fs.image_size) {
-        w = (*fs.image_size)[0];
-        h = (*fs.image_size)[1];
-    } else {
-        throw BadInput(fs.path, "no image: give --image, or \"image\" or \"image_size\" in the features file");
-    }
-    resolve_units(fs, w, h);
-    return image;
-}
-
 int cmd_validate(const std::string& mesh_path, const std::string& features_path, const std::string& image_arg) {
     const TriMesh mesh = read_mesh(mesh_path);
     const MeshTopology t = compute_topology(mesh);
     require_disc(t, mesh_path);
     FeatureSet fs = read_features(features_path);
     int w = 0, h = 0;
-    const std::string image = resolve_image(fs, image_arg, w, h);
+    const std::string image = resolve_feature_image(fs, image_arg, w, h);
     check_features_on_mesh(fs, mesh, mesh_path);
     std::cout << "ok: " << mesh_path << " is a disc (" << t.vertices << " vertices, " << t.faces << " faces); "
               << fs.features.size() << " features in " << features_path << " on a " << w << " x " << h << " image"
@@ -112,7 +91,7 @@ int cmd_check(const std::string& obj_path, const std::string& features_path, con
         throw BadInput(obj_path, "no texture coordinates (`vt` and `f v/vt`): there is no map to check");
     FeatureSet fs = read_features(features_path);
     int w = 0, h = 0;
-    resolve_image(fs, image_arg, w, h);
+    resolve_feature_image(fs, image_arg, w, h);
     check_features_on_mesh(fs, tm.mesh, obj_path);
     Eigen::AlignedBox3d box;
     for (const Vec3& p : tm.mesh.positions) box.extend(p);
@@ -155,31 +134,40 @@ int cmd_check(const std::string& obj_path, const std::string& features_path, con
     return c.valid ? kExitOk : kExitInvalid;
 }
 
-/// The shipped example: nefertiti.off with the project's features on astronaut.png.
-/// Until `ctmap map` lands (issue 4) the demo checks the example inputs and writes the mesh and
-/// its topology report; the map itself is added to it by that issue.
+/// The shipped example, end to end (issues 4 and 5): nefertiti.off mapped with the project's
+/// features onto astronaut.png, the map written as OBJ + MTL, GLB and report, then its five
+/// pictures and a page that shows them (index.html), all in `out_dir`.
 int cmd_demo(const std::string& out_dir) {
-    const std::string mesh_path = find_data_file("meshes/nefertiti.off");
-    const std::string features_path = find_data_file("features/nefertiti_astronaut.json");
-    const std::string image_path = find_data_file("images/astronaut.png");
+    cli::MapArgs args;
+    args.mesh = find_data_file("meshes/nefertiti.off");
+    args.features = find_data_file("features/nefertiti_astronaut.json");
+    args.image = find_data_file("images/astronaut.png");
     std::error_code ec;
     fs::create_directories(out_dir, ec);
     if (ec) throw BadInput(out_dir, "cannot create the output folder (" + ec.message() + ")");
-    std::cout << "demo: " << mesh_path << "\n      " << features_path << "\n      " << image_path << "\n";
-    cmd_validate(mesh_path, features_path, image_path);
-    const TriMesh mesh = read_mesh(mesh_path);
-    OutputSet outputs;
-    TexturedMesh tm;
-    tm.mesh = mesh;
-    tm.chart.assign(mesh.faces.size(), 0);
-    write_glb(tm, (fs::path(out_dir) / "nefertiti.glb").string(), "", outputs);
-    const std::string info_tmp = outputs.add((fs::path(out_dir) / "nefertiti_info.json").string());
-    {
-        std::ofstream os(info_tmp);
-        os << topology_to_json(compute_topology(mesh)) << "\n";
-    }
-    outputs.commit_all();
-    std::cout << "demo: wrote " << out_dir << "/nefertiti.glb and nefertiti_info.json\n";
+    const fs::path out(out_dir);
+    args.output = (out / "nefertiti.obj").string();
+    args.glb = (out / "nefertiti.glb").string();
+    args.report = (out / "report.json").string();
+    const cli::MapRun run = cli::run_map(args);
+    cli::print_map_summary(args, run, std::cout);
+
+    const MapResult& r = run.result;
+    GalleryOptions gallery;
+    gallery.title = "nefertiti on astronaut.png";
+    gallery.notes = {std::to_string(r.feature_uv.size()) + " features, " + std::to_string(r.triangulation.triangles.size()) +
+                         " patches, " + std::to_string(r.cut.mesh.num_faces()) + " faces",
+                     std::string("certificate: ") + (r.certificate.valid ? "valid" : "INVALID") + ", " +
+                         std::to_string(r.certificate.flipped) + " flipped, feature error " +
+                         std::to_string(r.certificate.feature_max_error),
+                     "symmetric Dirichlet " + std::to_string(r.before_refine.symmetric_dirichlet) + " -> " +
+                         std::to_string(r.certificate.distortion.symmetric_dirichlet) + " after refinement",
+                     "total " + std::to_string(int(r.timings_ms.total)) + " ms"};
+    OutputSet pictures;
+    const auto written = write_gallery({args.output, args.image, args.features}, out_dir, "nefertiti", gallery, pictures);
+    pictures.commit_all();
+    std::cout << "demo: " << written.size() << " pictures and index.html in " << out_dir
+              << " (open index.html in a browser)\n";
     return kExitOk;
 }
 
@@ -220,7 +208,9 @@ int run(int argc, char** argv) {
 
     // Subcommands in their own files (commands.h): add one line here per file.
     const std::vector<cli::Command> commands = {
+        cli::add_map_command(app),
         cli::add_render_command(app),
+        cli::add_starter_command(app),
     };
 
     try {

@@ -1,5 +1,7 @@
 #include "ctmap/io/features.h"
 
+#include "ctmap/io/image.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <Eigen/Geometry>
@@ -244,6 +246,26 @@ std::string features_to_json(const FeatureSet& fs) {
         j["features"].push_back(e);
     }
     return j.dump(2);
+}
+
+std::string resolve_feature_image(FeatureSet& fs, const std::string& image_arg, int& w, int& h) {
+    const std::string image = !image_arg.empty() ? image_arg : fs.image;
+    if (!image.empty()) {
+        const Image img = read_image(image);
+        w = img.width;
+        h = img.height;
+        if (fs.image_size && ((*fs.image_size)[0] != w || (*fs.image_size)[1] != h))
+            throw BadInput(fs.path, "\"image_size\" [" + std::to_string((*fs.image_size)[0]) + ", " +
+                                        std::to_string((*fs.image_size)[1]) + "] differs from the size of " + image +
+                                        " (" + std::to_string(w) + " x " + std::to_string(h) + ")");
+    } else if (fs.image_size) {
+        w = (*fs.image_size)[0];
+        h = (*fs.image_size)[1];
+    } else {
+        throw BadInput(fs.path, "no image: give --image, or \"image\" or \"image_size\" in the features file");
+    }
+    resolve_units(fs, w, h);
+    return image;
 }
 
 }  // namespace ctmap

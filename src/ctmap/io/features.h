@@ -42,6 +42,15 @@ FeatureSet parse_features(const std::string& text, const std::string& path);
 /// \throw BadInput naming the features outside the image.
 void resolve_units(FeatureSet& fs, int width, int height);
 
+/// Resolves the image of a features set by the rule of `ctmap map` (issue 4): `image_arg` (the
+/// --image option) if given, else the file's `image`, else its `image_size`; reads the image for
+/// its size (checking it against `image_size` when both are given), then converts the features'
+/// image points to pixels (`resolve_units`).
+/// \return the image path (empty when only `image_size` gave the size); width and height set.
+/// \throw BadInput naming the file: no image at all, an unreadable image, a size mismatch, or
+///        points outside the image.
+std::string resolve_feature_image(FeatureSet& fs, const std::string& image_arg, int& width, int& height);
+
 /// Checks the features against the mesh: every vertex index exists, every 3D point lies on the
 /// surface (within 1e-6 of the bounding-box diagonal).
 /// \throw BadInput naming the features and the mesh file.

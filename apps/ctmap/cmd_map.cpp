@@ -1,0 +1,158 @@
+// `ctmap map`: the constrained texture map of a mesh onto an image (issue 4), written as OBJ +
+// MTL, optionally GLB and a report; every output appears together or not at all.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "commands.h"
+#include "ctmap/errors.h"
+#include "ctmap/io/atomic_file.h"
+#include "ctmap/io/features.h"
+#include "ctmap/io/glb_io.h"
+#include "ctmap/io/map_report.h"
+#include "ctmap/io/mesh_topology.h"
+#include "ctmap/io/obj_io.h"
+#include "ctmap/io/read_mesh.h"
+#include "ctmap/map_texture.h"
+
+namespace ctmap::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string fixed(double x, int digits) {
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(digits) << x;
+    return os.str();
+}
+
+/// The progress line on a terminal: one line rewritten in place, cleared at the end.
+class Progress {
+public:
+    explicit Progress(bool enabled) : on_(enabled) {}
+    ~Progress() { clear(); }
+    void operator()(const std::string& stage, int done, int total) {
+        if (!on_) return;
+        std::string line = "ctmap map: " + stage;
+        if (total > 0) line += " " + std::to_string(done) + "/" + std::to_string(total);
+        std::fprintf(stderr, "\r%-60s", line.c_str());
+        std::fflush(stderr);
+        shown_ = true;
+    }
+    void clear() {
+        if (!shown_) return;
+        std::fprintf(stderr, "\r%-60s\r", "");
+        std::fflush(stderr);
+        shown_ = false;
+    }
+
+private:
+    bool on_;
+    bool shown_ = false;
+};
+
+}  // namespace
+
+MapRun run_map(const MapArgs& a) {
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
+    if (fs::path(a.output).extension() != ".obj")
+        throw BadInput(a.output, "the output must be an .obj file (its .mtl is written beside it)");
+    if (!a.glb.empty() && fs::path(a.glb).extension() != ".glb")
+        throw BadInput(a.glb, "--glb must name a .glb file");
+    const TriMesh mesh = read_mesh(a.mesh);
+    require_disc(compute_topology(mesh), a.mesh);
+    FeatureSet features = read_features(a.features);
+    MapRun run;
+    run.image = resolve_feature_image(features, a.image, run.width, run.height);
+    check_features_on_mesh(features, mesh, a.mesh);
+    const double read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+
+    MapOptions options;
+    if (a.spacing > 0) options.cut.spacing_factor = a.spacing;
+    options.refine = a.refine;
+    Progress progress(!a.quiet && isatty(fileno(stderr)));
+    options.progress = [&](const std::string& stage, int done, int total) { progress(stage, done, total); };
+    run.result = map_texture(mesh, map_features(features, run.width, run.height), options, a.features);
+    progress.clear();
+    run.result.timings_ms.read = read_ms;
+    run.result.timings_ms.total += read_ms;
+
+    // Everything is written to temporaries first and renamed together at the end.
+    OutputSet outputs;
+    const TexturedMesh tm = run.result.textured();
+    write_obj(tm, a.output, run.image, outputs);
+    run.written = {a.output, (fs::path(a.output).parent_path() / (fs::path(a.output).stem().string() + ".mtl")).string()};
+    if (!a.glb.empty()) {
+        write_glb(tm, a.glb, run.image, outputs);
+        run.written.push_back(a.glb);
+    }
+    if (!a.report.empty()) {
+        MapReportInputs in{a.mesh, a.features, run.image, run.width, run.height, mesh.num_vertices(), mesh.num_faces()};
+        const std::string tmp = outputs.add(a.report);
+        write_text_file(tmp, map_report(run.result, in).dump(2) + "\n");
+        run.written.push_back(a.report);
+    }
+    outputs.commit_all();
+    return run;
+}
+
+void print_map_summary(const MapArgs& a, const MapRun& run, std::ostream& os) {
+    const MapResult& r = run.result;
+    const Certificate& c = r.certificate;
+    const Distortion &d0 = r.before_refine, &d1 = c.distortion;
+    const MapTimings& t = r.timings_ms;
+    os << "ctmap map: " << a.mesh << " with " << r.feature_uv.size() << " features on "
+       << (run.image.empty() ? std::string("a") : run.image) << " (" << run.width << " x " << run.height << ")\n"
+       << "  " << r.triangulation.triangles.size() << " patches, " << r.cut_stats.paths << " paths, "
+       << r.cut.mesh.num_vertices() - r.cut.num_input_vertices + r.point_features << " vertices inserted ("
+       << r.cut_stats.steiner_vertices << " by the fallback), " << r.cut.mesh.num_faces() << " faces\n"
+       << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate
+       << " degenerate, feature error " << c.feature_max_error << ", border " << (c.border_simple ? "simple" : "crossing")
+       << ")\n";
+    if (a.refine)
+        os << "  refinement (" << r.relax_stats.iterations << " sweeps): symmetric Dirichlet " << fixed(d0.symmetric_dirichlet, 3)
+           << " -> " << fixed(d1.symmetric_dirichlet, 3) << ", conformal mean " << fixed(d0.conformal_mean, 3) << " -> "
+           << fixed(d1.conformal_mean, 3) << ", L2 stretch " << fixed(d0.l2_stretch, 3) << " -> " << fixed(d1.l2_stretch, 3)
+           << "\n";
+    else
+        os << "  no refinement: symmetric Dirichlet " << fixed(d1.symmetric_dirichlet, 3) << ", conformal mean "
+           << fixed(d1.conformal_mean, 3) << ", L2 stretch " << fixed(d1.l2_stretch, 3) << "\n";
+    os << "  ms: read " << fixed(t.read, 1) << ", triangulate " << fixed(t.triangulate, 1) << ", paths " << fixed(t.paths, 1)
+       << ", embed " << fixed(t.embed, 1) << ", refine " << fixed(t.refine, 1) << ", certify " << fixed(t.certify, 1)
+       << ", total " << fixed(t.total, 1) << "\n  wrote";
+    for (const std::string& f : run.written) os << " " << f;
+    os << "\n";
+}
+
+Command add_map_command(CLI::App& app) {
+    auto args = std::make_shared<MapArgs>();
+    auto* sub = app.add_subcommand(
+        "map", "Map a disc mesh onto an image with every feature exact and no flipped triangle (OBJ + MTL, GLB, report)");
+    sub->add_option("MESH", args->mesh, "mesh file (OFF, OBJ, PLY, STL), a topological disc")->required();
+    sub->add_option("FEATURES", args->features, "features.json (DESIGN §4): the same features on the mesh and the image")
+        ->required();
+    sub->add_option("-o,--output", args->output, "the map as OBJ; its MTL is written beside it")->required();
+    sub->add_option("--image", args->image,
+                    "texture image (PNG/JPEG); else the features file's \"image\", else its \"image_size\"");
+    sub->add_option("--glb", args->glb, "also write binary glTF with the image embedded (three.js, Blender)");
+    sub->add_option("--report", args->report, "also write a JSON report: counts, timings_ms, certificate, distortion");
+    sub->add_option("--spacing", args->spacing,
+                    "Steiner point spacing for the paths, as a fraction of the mean edge length (default 0.34)")
+        ->check(CLI::Range(0.01, 10.0));
+    sub->add_flag("--no-refine", [args](std::int64_t) { args->refine = false; },
+                  "skip the relaxation (paper §2.4): the bare mean value embedding");
+    sub->add_flag("-q,--quiet", args->quiet, "print nothing on success");
+    return {sub, [args] {
+                const MapRun run = run_map(*args);
+                if (!args->quiet) print_map_summary(*args, run, std::cout);
+                return kExitOk;
+            }};
+}
+
+}  // namespace ctmap::cli

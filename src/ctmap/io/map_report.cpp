@@ -1,0 +1,54 @@
+#include "ctmap/io/map_report.h"
+
+#include <cmath>
+
+namespace ctmap {
+namespace {
+
+nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+nlohmann::json distortion_json(const Distortion& d) {
+    return {{"symmetric_dirichlet", number_or_null(d.symmetric_dirichlet)},
+            {"conformal_mean", number_or_null(d.conformal_mean)},
+            {"conformal_max", number_or_null(d.conformal_max)},
+            {"area_distortion_mean", number_or_null(d.area_mean)},
+            {"area_distortion_max", number_or_null(d.area_max)},
+            {"l2_stretch", number_or_null(d.l2_stretch)}};
+}
+
+}  // namespace
+
+nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
+    nlohmann::json j;
+    j["inputs"] = {{"mesh", in.mesh},
+                   {"features", in.features},
+                   {"image", in.image.empty() ? nlohmann::json(nullptr) : nlohmann::json(in.image)},
+                   {"image_size", {in.image_width, in.image_height}}};
+    j["counts"] = {{"features", r.feature_uv.size()},
+                   {"point_features", r.point_features},
+                   {"triangles", r.triangulation.triangles.size()},
+                   {"paths", r.cut_stats.paths},
+                   {"input_vertices", in.input_vertices},
+                   {"input_faces", in.input_faces},
+                   {"vertices", r.cut.mesh.num_vertices()},
+                   {"faces", r.cut.mesh.num_faces()},
+                   {"inserted_vertices", r.cut.mesh.num_vertices() - in.input_vertices},
+                   {"steiner_vertices", r.cut_stats.steiner_vertices},
+                   {"flat_edges_split", r.flat_edges.edges_split},
+                   {"fallback_fired", r.cut_stats.fallback_fired}};
+    const MapTimings& t = r.timings_ms;
+    j["timings_ms"] = {{"read", t.read},   {"triangulate", t.triangulate}, {"paths", t.paths}, {"embed", t.embed},
+                       {"refine", t.refine}, {"certify", t.certify},       {"total", t.total}};
+    j["certificate"] = certificate_to_json(r.certificate);
+    j["distortion_before_refine"] = distortion_json(r.before_refine);
+    const RelaxStats& s = r.relax_stats;
+    j["relax"] = {{"sweeps", s.iterations},
+                  {"moves", s.moves},
+                  {"moves_shortened", s.moves_shortened},
+                  {"moves_rejected", s.moves_rejected},
+                  {"free_vertices", s.free_vertices},
+                  {"converged", s.converged}};
+    return j;
+}
+
+}  // namespace ctmap

@@ -1,0 +1,26 @@
+#pragma once
+/// \file map_report.h
+/// The report `ctmap map --report` writes (issue 4): counts, stage times like the paper's Table 2,
+/// the certificate and the distortion before and after the refinement.
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "ctmap/map_texture.h"
+
+namespace ctmap {
+
+/// The inputs a report names.
+struct MapReportInputs {
+    std::string mesh, features, image;
+    int image_width = 0, image_height = 0;
+    int input_vertices = 0, input_faces = 0;
+};
+
+/// The report of one map. Keys: `inputs`, `counts` {features, point_features, triangles (image
+/// triangles = patches), paths, input_vertices, input_faces, vertices, faces, inserted_vertices,
+/// steiner_vertices, flat_edges_split, fallback_fired}, `timings_ms` {read, triangulate, paths,
+/// embed, refine, certify, total}, `certificate` (certificate_to_json, with the distortion after
+/// refinement), `distortion_before_refine`, `relax` {sweeps, moves, converged, ...}.
+nlohmann::json map_report(const MapResult& result, const MapReportInputs& inputs);
+
+}  // namespace ctmap
