@@ -10,6 +10,8 @@ import os
 import subprocess
 import tempfile
 
+from markdown_section import replace_section
+
 BEGIN = "<!-- distortion:begin (bench/distortion_table.py writes this section) -->"
 END = "<!-- distortion:end -->"
 CASES = [("nefertiti", "nefertiti_astronaut", "astronaut"), ("lion-head", "lion-head_chelsea", "chelsea"),
@@ -47,12 +49,7 @@ def main():
         "| case | features | faces | symmetric Dirichlet | conformal (σ1/σ2) mean | area distortion mean "
         "| L2 stretch | sweeps | valid |",
         "|---|---|---|---|---|---|---|---|---|", *rows, "", END])
-    old = open(a.markdown).read() if os.path.exists(a.markdown) else "# Benchmarks\n"
-    if BEGIN in old and END in old:
-        new = old[:old.index(BEGIN)] + section + old[old.index(END) + len(END):]
-    else:
-        new = old.rstrip("\n") + "\n\n" + section + "\n"
-    open(a.markdown, "w").write(new)
+    replace_section(a.markdown, BEGIN, END, section)
     print(section)
 
 

@@ -15,6 +15,8 @@ import subprocess
 import sys
 import tempfile
 
+from markdown_section import replace_section
+
 BEGIN = "<!-- scaling:begin (bench/run writes this section) -->"
 END = "<!-- scaling:end -->"
 
@@ -118,12 +120,7 @@ def main():
         body += [f"![total time against triangles]({os.path.relpath(a.plot, os.path.dirname(a.markdown) or '.')})", ""]
     body.append(END)
     section = "\n".join(body)
-    old = open(a.markdown).read() if os.path.exists(a.markdown) else "# Benchmarks\n"
-    if BEGIN in old and END in old:
-        new = old[:old.index(BEGIN)] + section + old[old.index(END) + len(END):]
-    else:
-        new = old.rstrip("\n") + "\n\n" + section + "\n"
-    open(a.markdown, "w").write(new)
+    replace_section(a.markdown, BEGIN, END, section)
     print(f"wrote {a.markdown}" + (f" and {a.plot}" if a.plot else ""), file=sys.stderr)
 
 
