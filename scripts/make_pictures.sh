@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Redraws the README's pictures (docs/<case>_<mode>.png): each example mapped by `ctmap map`, then
+# drawn in the five modes by `ctmap render` (issue 5). Usage: scripts/make_pictures.sh [BUILD_DIR]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ctmap="${1:-build}/ctmap"
+[ -x "$ctmap" ] || { echo "no $ctmap: build first (scripts/build.sh)" >&2; exit 2; }
+
+# The data folders ctmap itself searches (src/ctmap/io/data_path.h), in the same order.
+data() {
+  for d in "${CTMAP_DATA:-}" data ../shared/data .cache/data; do
+    [ -n "$d" ] && [ -f "$d/$1" ] && { echo "$d/$1"; return; }
+  done
+  echo "missing data file $1" >&2; exit 2
+}
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir -p docs
+# case  mesh  features  image
+while read -r name mesh features image; do
+  "$ctmap" map "$(data "meshes/$mesh")" "$(data "features/$features")" --image "$(data "images/$image")" \
+    -o "$work/$name.obj" --quiet
+  "$ctmap" check "$work/$name.obj" --features "$(data "features/$features")" --image "$(data "images/$image")"
+  for mode in textured checker paths; do
+    "$ctmap" render "$work/$name.obj" -o "docs/${name}_$mode.png" --mode "$mode" \
+      --features "$(data "features/$features")" --size 640
+  done
+  for mode in uv triangulation; do  # the image plane: the picture takes the region's aspect
+    "$ctmap" render "$work/$name.obj" -o "docs/${name}_$mode.png" --mode "$mode" \
+      --features "$(data "features/$features")" --size 512
+  done
+done <<'CASES'
+nefertiti nefertiti.off nefertiti_astronaut.json astronaut.png
+lion-head lion-head.off lion-head_chelsea.json chelsea.png
+CASES
