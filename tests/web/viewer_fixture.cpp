@@ -7,8 +7,9 @@
 // Usage: ctmap_viewer_fixture OUT_DIR [--map]
 // Writes OUT_DIR/nefertiti.off (a copy of the mesh), OUT_DIR/blobs.png, OUT_DIR/features.json and
 // OUT_DIR/expected.json (per feature: name, vertex, 3D position, image point, colour painted
-// there). With --map, also the map itself through the library (map_texture, then write_obj and
-// write_glb to OUT_DIR/map.obj, map.mtl, map.glb), for builds without the `ctmap map` command.
+// there). CTest then maps them with `ctmap map` (tests/CMakeLists.txt). With --map, the fixture
+// makes the map itself through the library (map_texture, then write_obj and write_glb to
+// OUT_DIR/map.obj, map.mtl, map.glb), to tell a viewer failure from a CLI one by hand.
 #include <algorithm>
 #include <array>
 #include <cmath>
