@@ -10,7 +10,9 @@ bash scripts/build.sh build
 # three.js and playwright-core for the viewer test (tests/web), exactly as package-lock.json pins them.
 (cd tests/web && npm ci --no-audit --no-fund)
 (cd build && ctest --output-on-failure -j2 --timeout 1200)
+# Render's CLI test matches 'BadInput' by name but drives Mesa's llvmpipe, whose own allocations
+# LeakSanitizer reports: it runs in the normal build only.
 echo "== bad-input suite under AddressSanitizer + UndefinedBehaviorSanitizer"
 bash scripts/build.sh build-asan -DCTMAP_SANITIZE=ON -DCTMAP_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  ctest --output-on-failure -j2 -R 'BadInput|RoundTrip' --timeout 1200)
+  ctest --output-on-failure -j2 -R 'BadInput|RoundTrip' -E '^Render' --timeout 1200)
