@@ -6,6 +6,7 @@
 #include <set>
 
 #include "ctmap/cut/approximate_path.h"
+#include "ctmap/cut/exact_geodesic.h"
 #include "ctmap/cut/insert_path.h"
 #include "ctmap/cut/work_mesh.h"
 #include "ctmap/errors.h"
@@ -100,6 +101,10 @@ double mean_edge_length(const TriMesh& m) {
 
 }  // namespace
 
+double steiner_spacing(const TriMesh& mesh, const CutOptions& options) {
+    return options.spacing_factor * mean_edge_length(mesh);
+}
+
 std::vector<int> border_features(const TriMesh& mesh, const std::vector<int>& feature_vertex) {
     WorkMesh wm(mesh);
     std::unordered_map<int, int> feature_of;
@@ -168,7 +173,7 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
     order.insert(order.end(), closing.begin(), closing.end());
 
     PathSearchOptions search;
-    search.spacing = opt.spacing_factor * mean_edge_length(input);
+    search.spacing = steiner_spacing(input, opt);
     const int total = int(order.size());
     for (int i = 0; i < total; ++i) {
         const auto [u, w] = order[i];
@@ -181,6 +186,14 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
             c.path_edges = &net.path_edges;
             c.source_sector = net.sector(u, w);
             c.target_sector = net.sector(w, u);
+            if (opt.exact_geodesics && attempt == 0) {
+                found = find_exact_path(net.mesh, c);
+                if (found) {
+                    ++stats.exact_paths;
+                    break;
+                }
+                ++stats.exact_rejected;
+            }
             PathSearchOptions s = search;
             s.spacing = search.spacing / double(1 << std::min(attempt, 4));
             found = find_path(net.mesh, c, s);

@@ -47,6 +47,10 @@ struct CutOptions {
     /// Steiner point spacing relative to the mean edge length of the input (paper §2.3: "given a
     /// constant length, each edge is inserted with several intermediate points").
     double spacing_factor = 0.34;
+    /// Paths from CGAL's exact geodesics (`find_exact_path`) instead of the Steiner-graph search,
+    /// for comparison; a geodesic that breaks the path rules (it may cross a path, pass through a
+    /// blocked vertex or leave outside its sector) is replaced by the approximate search.
+    bool exact_geodesics = false;
     /// How many times the fallback may refine around a path's ends before giving up.
     int max_refinements = 8;
     /// Called with a short message as paths are inserted (for progress lines).
@@ -60,7 +64,13 @@ struct CutStats {
     int steiner_vertices = 0;   ///< vertices added by the fallback
     int inserted_vertices = 0;  ///< all vertices added (paths + fallback)
     double path_length = 0;     ///< total length of the interior paths
+    int exact_paths = 0;        ///< paths inserted as exact geodesics (exact_geodesics on)
+    int exact_rejected = 0;     ///< exact geodesics that broke the rules: approximate search used
 };
+
+/// The Steiner point spacing the path search of `cut_mesh` uses on `mesh` (world units):
+/// `options.spacing_factor` times the mean edge length. \pre `mesh` has faces.
+double steiner_spacing(const TriMesh& mesh, const CutOptions& options = {});
 
 /// The border features in the order the mesh border meets them (interior on the left), starting
 /// anywhere. \pre `mesh` is a disc; feature_vertex holds distinct vertex ids.
