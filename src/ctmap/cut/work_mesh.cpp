@@ -14,28 +14,36 @@ WorkMesh::WorkMesh(const TriMesh& m) : positions(m.positions), faces(m.faces), o
 
 void WorkMesh::rebuild() {
     edges.clear();
-    edge_id.clear();
     edge_faces.clear();
-    edge_id.reserve(faces.size() * 2);
     vertex_faces.assign(positions.size(), {});
     face_edges.assign(faces.size(), {-1, -1, -1});
     for (int f = 0; f < int(faces.size()); ++f)
+        for (int k = 0; k < 3; ++k) vertex_faces[faces[f][k]].push_back(f);
+    // Edge ids in order of first appearance (face order, then corner order); the twin of a
+    // face's edge (a, b) is the face around b with the edge (b, a).
+    for (int f = 0; f < int(faces.size()); ++f)
         for (int k = 0; k < 3; ++k) {
+            if (face_edges[f][k] >= 0) continue;
             const int a = faces[f][k], b = faces[f][(k + 1) % 3];
-            vertex_faces[a].push_back(f);
-            auto [it, fresh] = edge_id.emplace(edge_key(a, b), int(edges.size()));
-            face_edges[f][k] = it->second;
-            if (fresh) {
-                edges.push_back(edge_key(a, b));
-                edge_faces.push_back({f, -1});
-            } else {
-                edge_faces[it->second][1] = f;
+            const int e = int(edges.size());
+            edges.push_back(edge_key(a, b));
+            edge_faces.push_back({f, -1});
+            face_edges[f][k] = e;
+            for (int g : vertex_faces[b]) {
+                if (g == f) continue;
+                const int j = corner_of(g, b);
+                if (faces[g][(j + 1) % 3] != a) continue;
+                if (face_edges[g][j] >= 0)
+                    throw InternalError("the mesh is not manifold at edge " + std::to_string(a) + "-" + std::to_string(b));
+                face_edges[g][j] = e;
+                edge_faces[e][1] = g;
             }
         }
 }
 
 void WorkMesh::replace_faces(const std::vector<int>& removed, const std::vector<Tri>& added,
                              const std::vector<int>& added_origin) {
+    if (removed.size() > added.size()) throw InternalError("replace_faces: fewer faces added than removed");
     std::vector<int> touched_edges;
     for (int f : removed) {
         const Tri& t = faces[f];
@@ -65,23 +73,25 @@ void WorkMesh::replace_faces(const std::vector<int>& removed, const std::vector<
         const Tri& t = added[i];
         for (int k = 0; k < 3; ++k) {
             const int a = t[k], b = t[(k + 1) % 3];
-            vertex_faces[a].push_back(id);
-            auto [it, fresh] = edge_id.emplace(edge_key(a, b), int(edges.size()));
-            face_edges[id][k] = it->second;
-            if (fresh) {
+            // The edge as it already is: on a live face, or (both its faces replaced) among the
+            // removed faces' edges, which keeps its id.
+            int e = find_edge(a, b);
+            if (e < 0)
+                for (int x : touched_edges)
+                    if (edges[x] == edge_key(a, b)) e = x;
+            if (e < 0) {
+                e = int(edges.size());
                 edges.push_back(edge_key(a, b));
-                edge_faces.push_back({id, -1});
-                continue;
+                edge_faces.push_back({-1, -1});
             }
-            auto& ef = edge_faces[it->second];
+            face_edges[id][k] = e;
+            auto& ef = edge_faces[e];
             if (ef[0] < 0) ef[0] = id;
             else if (ef[1] < 0) ef[1] = id;
             else throw InternalError("the refined mesh would not be manifold at edge " + std::to_string(a) + "-" + std::to_string(b));
         }
+        for (int k = 0; k < 3; ++k) vertex_faces[t[k]].push_back(id);
     }
-    if (removed.size() > added.size()) throw InternalError("replace_faces: fewer faces added than removed");
-    for (int e : touched_edges)
-        if (edge_faces[e][0] < 0) edge_id.erase(edges[e]);  // split: dead from now on
 }
 
 std::vector<WorkMesh::FanEntry> WorkMesh::fan(int v) const {
