@@ -28,21 +28,6 @@ bool between(const Vec2& a, const Vec2& b, const Vec2& c) {
 
 int sign_of(double x) { return (x > 0) - (x < 0); }
 
-/// Identity of a UV vertex: a mesh vertex and its UV, bitwise. Corners of one mesh vertex with
-/// equal UVs are one UV vertex even when the file repeats the `vt` per face.
-struct UvKey {
-    int vertex;
-    std::uint64_t x, y;
-    bool operator==(const UvKey& o) const { return vertex == o.vertex && x == o.x && y == o.y; }
-};
-struct UvKeyHash {
-    std::size_t operator()(const UvKey& k) const {
-        std::uint64_t h = std::uint64_t(k.vertex) * 0x9E3779B97F4A7C15ull;
-        h ^= k.x + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
-        h ^= k.y + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
-        return std::size_t(h);
-    }
-};
 std::uint64_t bits(double d) {
     if (d == 0) d = 0;  // -0.0 and 0.0 are the same point
     std::uint64_t u;
@@ -173,10 +158,14 @@ Certificate certify(const TexturedMesh& tm, const std::vector<int>& feature_vert
     // Orientation, exactly, per face; then the majority per chart.
     std::vector<signed char> sign(nf);
     std::unordered_map<int, std::pair<int, int>> per_chart;  // chart -> (positive, negative)
+    int last_chart = 0;
+    std::pair<int, int>* pn_last = &per_chart[0];  // faces of a chart mostly come together
     for (int f = 0; f < nf; ++f) {
         const Tri& u = tm.uv_faces[f];
         sign[f] = static_cast<signed char>(orientation_2d(tm.uvs[u[0]], tm.uvs[u[1]], tm.uvs[u[2]]));
-        auto& pn = per_chart[tm.chart.empty() ? 0 : tm.chart[f]];
+        const int chart = tm.chart.empty() ? 0 : tm.chart[f];
+        if (chart != last_chart) pn_last = &per_chart[last_chart = chart];
+        auto& pn = *pn_last;
         if (sign[f] > 0) ++c.positive, ++pn.first;
         if (sign[f] < 0) ++c.negative, ++pn.second;
         if (sign[f] == 0) ++c.degenerate;
@@ -215,36 +204,68 @@ Certificate certify(const TexturedMesh& tm, const std::vector<int>& feature_vert
             throw BadInput("", "feature " + std::to_string(i) + ": vertex " + std::to_string(feature_vertex[i]) +
                                    " is used by no face");
 
-    // UV border: canonical UV vertices, edges of exactly one UV face.
-    std::unordered_map<UvKey, int, UvKeyHash> ids;
+    // UV border: canonical UV vertices, edges of exactly one UV face. Built from per-vertex
+    // lists rather than hash maps of keys: on a million triangles the hashing was most of the
+    // certificate's time.
+    std::vector<int> first(nv + 1, 0);  // corners grouped by mesh vertex (counting sort)
+    for (const Tri& t : m.faces)
+        for (int v : t) ++first[v + 1];
+    for (int v = 0; v < nv; ++v) first[v + 1] += first[v];
+    std::vector<int> corners(std::size_t(3) * nf), fill(first.begin(), first.end() - 1);
+    for (int f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) corners[fill[m.faces[f][k]]++] = 3 * f + k;
     std::vector<Vec2> pos;
     std::vector<std::array<int, 3>> corner_id(nf);
-    for (int f = 0; f < nf; ++f)
-        for (int k = 0; k < 3; ++k) {
-            const Vec2& p = tm.uvs[tm.uv_faces[f][k]];
-            const UvKey key{m.faces[f][k], bits(p.x()), bits(p.y())};
-            auto [it, inserted] = ids.try_emplace(key, int(pos.size()));
-            if (inserted) pos.push_back(p);
-            corner_id[f][k] = it->second;
-        }
-    std::unordered_map<std::uint64_t, int> edge_count;
-    edge_count.reserve(std::size_t(nf) * 2);
-    auto key_of = [](int a, int b) {
-        if (a > b) std::swap(a, b);
-        return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+    auto uv_bits = [&](int corner) {
+        const Vec2& p = tm.uvs[tm.uv_faces[corner / 3][corner % 3]];
+        return std::pair{bits(p.x()), bits(p.y())};
     };
+    for (int v = 0; v < nv; ++v) {
+        // Corners of one mesh vertex with bitwise equal UVs are one UV vertex.
+        auto begin = corners.begin() + first[v], end = corners.begin() + first[v + 1];
+        std::sort(begin, end, [&](int a, int b) { return uv_bits(a) < uv_bits(b); });
+        for (auto it = begin; it != end; ++it) {
+            if (it == begin || uv_bits(*it) != uv_bits(*(it - 1)))
+                pos.push_back(tm.uvs[tm.uv_faces[*it / 3][*it % 3]]);
+            corner_id[*it / 3][*it % 3] = int(pos.size()) - 1;
+        }
+    }
+    // Faces per UV vertex, then every UV edge counted once, from the first face that has it.
+    const int nu = int(pos.size());
+    std::vector<int> ufirst(nu + 1, 0), ufaces;
+    for (const auto& t : corner_id)
+        for (int a : t) ++ufirst[a + 1];
+    for (int a = 0; a < nu; ++a) ufirst[a + 1] += ufirst[a];
+    ufaces.resize(std::size_t(ufirst[nu]));
+    std::vector<int> ufill(ufirst.begin(), ufirst.end() - 1);
     for (int f = 0; f < nf; ++f)
-        for (int k = 0; k < 3; ++k) ++edge_count[key_of(corner_id[f][k], corner_id[f][(k + 1) % 3])];
+        for (int a : corner_id[f]) ufaces[ufill[a]++] = f;
+    auto same_edge = [](int a, int b, int x, int y) { return (a == x && b == y) || (a == y && b == x); };
     std::vector<std::array<int, 2>> border;
     std::vector<int> border_degree(pos.size(), 0);
-    for (const auto& [key, n] : edge_count) {
-        if (n > 2) ++c.border_crossings;  // a UV edge of three or more faces: the UV surface folds onto itself
-        if (n != 1) continue;
-        const int a = int(key >> 32), b = int(key & 0xffffffffu);
-        border.push_back({a, b});
-        ++border_degree[a];
-        ++border_degree[b];
-    }
+    for (int f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = corner_id[f][k], b = corner_id[f][(k + 1) % 3];
+            bool earlier = false;  // met already, in an earlier face or an earlier corner of f
+            for (int j = 0; j < k; ++j) earlier |= same_edge(a, b, corner_id[f][j], corner_id[f][(j + 1) % 3]);
+            int n = 0, previous = -1;
+            for (int i = ufirst[a]; i < ufirst[a + 1] && !earlier; ++i) {
+                const int g = ufaces[i];
+                if (g == previous) continue;  // a face listed twice (a repeated corner)
+                previous = g;
+                for (int j = 0; j < 3; ++j)
+                    if (same_edge(a, b, corner_id[g][j], corner_id[g][(j + 1) % 3])) {
+                        if (g < f) earlier = true;
+                        ++n;
+                    }
+            }
+            if (earlier) continue;
+            if (n > 2) ++c.border_crossings;  // a UV edge of three or more faces: the UV surface folds onto itself
+            if (n != 1) continue;
+            border.push_back({a, b});
+            ++border_degree[a];
+            ++border_degree[b];
+        }
     // A UV vertex with more than two border edges pinches the border: it touches itself there.
     for (int deg : border_degree)
         if (deg > 2) ++c.border_crossings;
