@@ -69,13 +69,14 @@ long peak_rss_mb() {
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::cerr << "usage: scaling_row MESH [--levels L] [--features N] [--runs R] [--cgal-runs K] [--seed S] [--energy-tolerance T]\n";
+        std::cerr << "usage: scaling_row MESH [--levels L] [--features N] [--runs R] [--cgal-runs K] [--seed S] [--energy-tolerance T] [--over-relaxation W]\n";
         return 2;
     }
     const std::string path = argv[1];
     int levels = 0, features = 10, runs = 3, cgal_runs = -1;
     unsigned seed = 1;
     double energy_tolerance = MapOptions().relax.energy_tolerance;
+    double over_relaxation = MapOptions().relax.over_relaxation;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&] { return i + 1 < argc ? std::stoi(argv[++i]) : 0; };
@@ -85,6 +86,7 @@ int main(int argc, char** argv) {
         else if (a == "--seed") seed = unsigned(next());
         else if (a == "--cgal-runs") cgal_runs = next();
         else if (a == "--energy-tolerance" && i + 1 < argc) energy_tolerance = std::stod(argv[++i]);
+        else if (a == "--over-relaxation" && i + 1 < argc) over_relaxation = std::stod(argv[++i]);
     }
     if (cgal_runs < 0) cgal_runs = runs;
     const bool with_cgal = cgal_runs > 0;
@@ -106,6 +108,7 @@ int main(int argc, char** argv) {
         for (int r = 0; r < runs; ++r) {
             MapOptions options;
             options.relax.energy_tolerance = energy_tolerance;
+            options.relax.over_relaxation = over_relaxation;
             last = map_texture(mesh, mf, options);
             tri.push_back(last.timings_ms.triangulate);
             paths.push_back(last.timings_ms.paths);

@@ -372,6 +372,9 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
         return true;
     };
 
+    // Over-relaxation only with the guard: without it nothing stops an overshooting sweep from
+    // growing (the virtual-image rows are affine, not convex; nefertiti's energy went to 1e19).
+    const double omega = options.energy_guard ? options.over_relaxation : 1.0;
     std::vector<char> active(nv, 1);
     for (int it = 0; it < options.max_iterations; ++it) {
         Eigen::AlignedBox2d box;
@@ -396,7 +399,7 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
             for (int i = w_offset[v]; i < w_offset[v + 1]; ++i) target += w_val[i] * uv[w_nbr[i]];
             const Vec2 d = target - uv[v];
             if (!(d.norm() > negligible)) continue;
-            double step = 1;
+            double step = omega;
             bool accepted = false;
             const Sums old_local = options.energy_guard ? local_sums(v, uv[v]) : Sums();
             Sums delta;
