@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SVD>
+#include <gmp.h>
+
 #include <cmath>
+#include <random>
 #include <nlohmann/json.hpp>
 
 #include "ctmap/certify/certificate.h"
@@ -263,6 +266,58 @@ TEST(Certify, SegmentPredicateIsExact) {
         for (int j = 0; j < 16; ++j)
             EXPECT_EQ(orientation_2d({0.5 + i * u, 0.5 + j * u}, {12, 12}, {24, 24}), (j > i) - (j < i))
                 << i << ", " << j;
+}
+
+/// The exact sign of the orientation determinant, in rationals (GMP: every double is a rational).
+int exact_orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
+    mpq_t q[6], l, r;
+    const double d[6] = {a.x(), a.y(), b.x(), b.y(), c.x(), c.y()};
+    for (int i = 0; i < 6; ++i) {
+        mpq_init(q[i]);
+        mpq_set_d(q[i], d[i]);
+    }
+    mpq_inits(l, r, nullptr);
+    mpq_sub(q[0], q[0], q[4]);  // ax - cx
+    mpq_sub(q[1], q[1], q[5]);  // ay - cy
+    mpq_sub(q[2], q[2], q[4]);  // bx - cx
+    mpq_sub(q[3], q[3], q[5]);  // by - cy
+    mpq_mul(l, q[0], q[3]);
+    mpq_mul(r, q[1], q[2]);
+    const int s = mpq_cmp(l, r);
+    for (auto& x : q) mpq_clear(x);
+    mpq_clears(l, r, nullptr);
+    return (s > 0) - (s < 0);
+}
+
+TEST(Certify, OrientationAgreesWithRationalArithmetic) {
+    // Nearly collinear triples (the third point on the segment, then moved by a few ulps) at
+    // scales from 1e-150 to 1e150, where a floating-point filter is most likely to be wrong.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    std::uniform_int_distribution<int> ulps(-3, 3), scale_exp(-150, 150);
+    int near_zero = 0;
+    for (int n = 0; n < 200000; ++n) {
+        const double s = std::pow(10.0, scale_exp(rng) * (n % 4 == 0 ? 1 : 0));
+        Vec2 a(s * unit(rng), s * unit(rng)), b(s * unit(rng), s * unit(rng));
+        // Every third triple exactly collinear before the ulps: t a multiple of 1/8 and a, b
+        // rounded to multiples of s/1024 keep c = a + t (b - a) exact.
+        const bool dyadic = n % 3 == 0;
+        const double t = dyadic ? std::floor(4 * (unit(rng) + 1)) / 8 : 0.5 * (unit(rng) + 1);
+        Vec2 c = a + t * (b - a);
+        if (dyadic) {
+            const double g = std::ldexp(1.0, std::ilogb(s) - 10);
+            a = Vec2(std::round(a.x() / g) * g, std::round(a.y() / g) * g);
+            b = Vec2(std::round(b.x() / g) * g, std::round(b.y() / g) * g);
+            c = a + t * (b - a);
+        }
+        for (int k = 0; k < 2; ++k)
+            for (int m = ulps(rng); m != 0; m += m > 0 ? -1 : 1)
+                c[k] = std::nextafter(c[k], m > 0 ? INFINITY : -INFINITY);
+        const int expected = exact_orientation(a, b, c);
+        near_zero += expected == 0;
+        ASSERT_EQ(orientation_2d(a, b, c), expected) << n;
+    }
+    std::cout << "200000 nearly collinear triples agree with rational arithmetic (" << near_zero << " exactly collinear)\n";
 }
 
 TEST(Certify, ScalesToTheLargestMesh) {

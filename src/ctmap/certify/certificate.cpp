@@ -66,6 +66,19 @@ void singular_values(double a, double b, double c, double d, double& s1, double&
 }  // namespace
 
 int orientation_2d(const Vec2& a, const Vec2& b, const Vec2& c) {
+    // Shewchuk's first filter (orient2d, error bound (3 + 16 eps) eps): when the rounded
+    // determinant is farther from zero than its worst rounding error, its sign is exact. The
+    // relaxation asks this for every trial move, and most answers are far from zero. Near zero,
+    // or where the products could underflow, CGAL's exact predicate decides.
+    const double left = (a.x() - c.x()) * (b.y() - c.y());
+    const double right = (a.y() - c.y()) * (b.x() - c.x());
+    const double det = left - right;
+    const double magnitude = std::abs(left) + std::abs(right);
+    if (magnitude > 1e-280 && magnitude < 1e280) {
+        const double bound = 3.3306690738754716e-16 * magnitude;
+        if (det > bound) return 1;
+        if (-det > bound) return -1;
+    }
     return int(CGAL::orientation(pt(a), pt(b), pt(c)));
 }
 
