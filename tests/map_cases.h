@@ -15,7 +15,7 @@
 namespace ctmap::test {
 
 /// The border loop of a disc, in the faces' orientation (the interior on the left).
-inline std::vector<int> border_loop(const TriMesh& m) {
+inline std::vector<int> border_loop_by_sets(const TriMesh& m) {
     std::set<std::pair<int, int>> directed;
     for (const Tri& t : m.faces)
         for (int k = 0; k < 3; ++k) directed.insert({t[k], t[(k + 1) % 3]});
@@ -62,7 +62,7 @@ inline CutCase disc_case(const TriMesh& mesh, std::array<Vec2, 3> uv = {Vec2(0.1
     c.input = mesh;
     c.cut.mesh = mesh;
     c.cut.num_input_vertices = mesh.num_vertices();
-    const std::vector<int> loop = border_loop(mesh);
+    const std::vector<int> loop = border_loop_by_sets(mesh);
     const int n = int(loop.size());
     const std::array<int, 3> at{0, n / 3, (2 * n) / 3};
     c.cut.feature_vertex = {loop[at[0]], loop[at[1]], loop[at[2]]};

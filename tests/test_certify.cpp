@@ -112,7 +112,7 @@ TEST(Certify, AgreesWithAnIndependentRecomputation) {
     EXPECT_GT(d.symmetric_dirichlet, 4.0);  // not an isometry: the measure is not trivially at its minimum
     EXPECT_EQ(d.faces_measured, tm.mesh.num_faces());
     // The UV border of a disc: as many edges as the mesh border (8 + 8 + 12 + 12 + the splits' none).
-    EXPECT_EQ(cert.border_edges, int(border_loop(tm.mesh).size()));
+    EXPECT_EQ(cert.border_edges, int(border_loop_by_sets(tm.mesh).size()));
 }
 
 TEST(Certify, IsometryHasIdealDistortion) {

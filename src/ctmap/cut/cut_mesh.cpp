@@ -5,6 +5,7 @@
 #include <numeric>
 #include <set>
 
+#include "ctmap/border_loop.h"
 #include "ctmap/cut/approximate_path.h"
 #include "ctmap/cut/exact_geodesic.h"
 #include "ctmap/cut/insert_path.h"
@@ -106,11 +107,10 @@ double steiner_spacing(const TriMesh& mesh, const CutOptions& options) {
 }
 
 std::vector<int> border_features(const TriMesh& mesh, const std::vector<int>& feature_vertex) {
-    WorkMesh wm(mesh);
     std::unordered_map<int, int> feature_of;
     for (int i = 0; i < int(feature_vertex.size()); ++i) feature_of[feature_vertex[i]] = i;
     std::vector<int> out;
-    for (int v : wm.border_loop())
+    for (int v : border_loop(mesh))
         if (feature_of.count(v)) out.push_back(feature_of[v]);
     return out;
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "ctmap/border_loop.h"
 #include "ctmap/cut/work_mesh.h"
 #include "ctmap/errors.h"
 
@@ -55,7 +56,7 @@ std::vector<Vec2> tutte_map(const TriMesh& mesh) {
 
 FeatureSet starter_features(const TriMesh& mesh, int width, int height, const StarterOptions& opt) {
     const std::vector<Vec2> disc = tutte_map(mesh);
-    const std::vector<int> loop = WorkMesh(mesh).border_loop();
+    const std::vector<int> loop = border_loop(mesh);
     FeatureSet fs;
     fs.image_size = std::array<int, 2>{width, height};
     // The disc onto an ellipse inside the image; v up in the disc, y down in pixels (DESIGN §3).
