@@ -12,6 +12,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 
@@ -141,85 +142,86 @@ FlatEdgeStats split_flat_edges(CutMesh& cut, const TriMesh& input) {
     FlatEdgeStats stats;
     TriMesh& m = cut.mesh;
     const bool keep_bary = cut.vertex_face.size() == m.positions.size() && !m.positions.empty();
-    std::vector<std::vector<int>> input_vertex_faces;  // built on first need
     // Splitting an edge creates edges to its (interior) midpoint only, so one pass removes every
-    // flat edge; the loop is a guard against a malformed cut rather than a needed iteration.
-    for (int pass = 0; pass < 2; ++pass) {
-        const SideIndex sides(cut);
-        const std::vector<std::pair<int, int>> flat = find_flat_edges(cut, sides);
-        if (flat.empty()) return stats;
-        if (pass == 1) throw InternalError("embed: flat edges remain after splitting (a malformed cut)");
-        std::vector<std::vector<int>> vf(m.positions.size());
-        for (int f = 0; f < m.num_faces(); ++f)
-            for (int v : m.faces[f]) vf[v].push_back(f);
-        for (const auto& [a, b] : flat) {
-            std::vector<int> faces;
-            for (int f : vf[a])
-                if (std::find(m.faces[f].begin(), m.faces[f].end(), b) != m.faces[f].end()) faces.push_back(f);
-            if (faces.size() != 2 || cut.face_patch[faces[0]] != cut.face_patch[faces[1]])
-                throw InternalError("embed: edge (" + std::to_string(a) + ", " + std::to_string(b) +
-                                    ") joins two vertices of one side but does not have two faces of one patch");
-            const int mid = m.num_vertices();
-            m.positions.push_back(0.5 * (m.positions[a] + m.positions[b]));
-            vf.emplace_back();
-            for (int f : faces) {
-                Tri& t = m.faces[f];
-                int k = 0;
-                while (!((t[k] == a || t[k] == b) && (t[(k + 1) % 3] == a || t[(k + 1) % 3] == b))) ++k;
-                const int x = t[k], y = t[(k + 1) % 3], z = t[(k + 2) % 3];
-                t = Tri{x, mid, z};
-                const int g = m.num_faces();
-                m.faces.push_back(Tri{mid, y, z});
-                cut.face_patch.push_back(cut.face_patch[f]);
-                vf[y].erase(std::find(vf[y].begin(), vf[y].end(), f));
-                vf[y].push_back(g);
-                vf[z].push_back(g);
-                vf[mid].push_back(f);
-                vf[mid].push_back(g);
-            }
-            if (keep_bary) {
-                // The edge lies in one input face (the cut only splits); find it among the faces
-                // of its ends and express the midpoint there.
-                std::vector<int> candidates{cut.vertex_face[a], cut.vertex_face[b]};
-                if (a < cut.num_input_vertices || b < cut.num_input_vertices) {
-                    if (input_vertex_faces.empty()) {
-                        input_vertex_faces.resize(input.positions.size());
-                        for (int f = 0; f < input.num_faces(); ++f)
-                            for (int v : input.faces[f])
-                                if (v >= 0 && v < int(input_vertex_faces.size())) input_vertex_faces[v].push_back(f);
-                    }
-                    for (int v : {a, b})
-                        if (v < cut.num_input_vertices && v < int(input_vertex_faces.size()))
-                            candidates.insert(candidates.end(), input_vertex_faces[v].begin(),
-                                              input_vertex_faces[v].end());
-                }
-                int best = -1;
-                double best_score = -std::numeric_limits<double>::infinity();
-                Vec3 best_bary = Vec3::Zero();
-                const Vec3& P = m.positions[mid];
-                for (int f : candidates) {
-                    if (f < 0 || f >= input.num_faces()) continue;
-                    const Tri& t = input.faces[f];
-                    double dist = 0;
-                    const Vec3 l = barycentric(P, input.positions[t[0]], input.positions[t[1]], input.positions[t[2]],
-                                               &dist);
-                    const double scale = (input.positions[t[1]] - input.positions[t[0]]).norm() +
-                                         (input.positions[t[2]] - input.positions[t[0]]).norm();
-                    const double score = l.minCoeff() - dist / std::max(scale, 1e-300);
-                    if (score > best_score) {
-                        best_score = score;
-                        best = f;
-                        best_bary = l;
-                    }
-                }
-                if (best < 0)
-                    throw InternalError("embed: the midpoint of edge (" + std::to_string(a) + ", " + std::to_string(b) +
-                                        ") lies in none of its ends' input faces");
-                cut.vertex_face.push_back(best);
-                cut.vertex_bary.push_back(best_bary);
-            }
-            ++stats.edges_split;
+    // flat edge (embed_patches checks that none is left).
+    const std::vector<std::pair<int, int>> flat = find_flat_edges(cut, SideIndex(cut));
+    if (flat.empty()) return stats;
+    // Faces around the ends of flat edges only (the only lists looked up below), in the cut
+    // mesh and in the input: lists for every vertex of a million-triangle mesh cost more than
+    // all the splitting.
+    std::unordered_map<int, std::vector<int>> vf, input_vertex_faces;
+    for (const auto& [a, b] : flat) vf[a], vf[b];
+    for (int f = 0; f < m.num_faces(); ++f)
+        for (int v : m.faces[f])
+            if (auto it = vf.find(v); it != vf.end()) it->second.push_back(f);
+    if (keep_bary) {
+        for (const auto& [a, b] : flat)
+            for (int v : {a, b})
+                if (v < cut.num_input_vertices && v < input.num_vertices()) input_vertex_faces[v];
+        for (int f = 0; f < input.num_faces(); ++f)
+            for (int v : input.faces[f])
+                if (auto it = input_vertex_faces.find(v); it != input_vertex_faces.end()) it->second.push_back(f);
+    }
+    auto update = [&](int v, int f_old, int f_new) {
+        auto it = vf.find(v);
+        if (it == vf.end()) return;
+        if (f_old >= 0) it->second.erase(std::find(it->second.begin(), it->second.end(), f_old));
+        it->second.push_back(f_new);
+    };
+    for (const auto& [a, b] : flat) {
+        std::vector<int> faces;
+        for (int f : vf.at(a))
+            if (std::find(m.faces[f].begin(), m.faces[f].end(), b) != m.faces[f].end()) faces.push_back(f);
+        if (faces.size() != 2 || cut.face_patch[faces[0]] != cut.face_patch[faces[1]])
+            throw InternalError("embed: edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                                ") joins two vertices of one side but does not have two faces of one patch");
+        const int mid = m.num_vertices();
+        m.positions.push_back(0.5 * (m.positions[a] + m.positions[b]));
+        for (int f : faces) {
+            Tri& t = m.faces[f];
+            int k = 0;
+            while (!((t[k] == a || t[k] == b) && (t[(k + 1) % 3] == a || t[(k + 1) % 3] == b))) ++k;
+            const int x = t[k], y = t[(k + 1) % 3], z = t[(k + 2) % 3];
+            t = Tri{x, mid, z};
+            const int g = m.num_faces();
+            m.faces.push_back(Tri{mid, y, z});
+            cut.face_patch.push_back(cut.face_patch[f]);
+            update(y, f, g);
+            update(z, -1, g);
         }
+        if (keep_bary) {
+            // The edge lies in one input face (the cut only splits); find it among the faces
+            // of its ends and express the midpoint there.
+            std::vector<int> candidates{cut.vertex_face[a], cut.vertex_face[b]};
+            for (int v : {a, b})
+                if (auto it = input_vertex_faces.find(v); it != input_vertex_faces.end())
+                    candidates.insert(candidates.end(), it->second.begin(), it->second.end());
+            int best = -1;
+            double best_score = -std::numeric_limits<double>::infinity();
+            Vec3 best_bary = Vec3::Zero();
+            const Vec3& P = m.positions[mid];
+            for (int f : candidates) {
+                if (f < 0 || f >= input.num_faces()) continue;
+                const Tri& t = input.faces[f];
+                double dist = 0;
+                const Vec3 l = barycentric(P, input.positions[t[0]], input.positions[t[1]], input.positions[t[2]],
+                                           &dist);
+                const double scale = (input.positions[t[1]] - input.positions[t[0]]).norm() +
+                                     (input.positions[t[2]] - input.positions[t[0]]).norm();
+                const double score = l.minCoeff() - dist / std::max(scale, 1e-300);
+                if (score > best_score) {
+                    best_score = score;
+                    best = f;
+                    best_bary = l;
+                }
+            }
+            if (best < 0)
+                throw InternalError("embed: the midpoint of edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                                    ") lies in none of its ends' input faces");
+            cut.vertex_face.push_back(best);
+            cut.vertex_bary.push_back(best_bary);
+        }
+        ++stats.edges_split;
     }
     return stats;
 }
