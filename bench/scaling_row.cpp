@@ -124,6 +124,7 @@ int main(int argc, char** argv) {
         j["levels"] = levels;
         j["triangles"] = mesh.num_faces();
         j["features"] = int(mf.size());
+        j["features_requested"] = features;  // a random set may come out a feature short
         j["runs"] = runs;
         j["ms"] = {{"triangulate", median(tri)}, {"paths", median(paths)}, {"embed", median(embed)},
                    {"refine", median(refine)},   {"certify", median(certify)}, {"total", median(total)}};
