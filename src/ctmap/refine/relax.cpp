@@ -416,7 +416,7 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
                     ++stats.energy_rejections;
                     // If even the shortest step raises the energy, the direction climbs: stop
                     // here instead of trying every length in between.
-                    if (h == 0 && !energy_ok(uv[v] + std::ldexp(1.0, -options.max_halvings) * d)) break;
+                    if (h == 0 && !energy_ok(uv[v] + omega * std::ldexp(1.0, -options.max_halvings) * d)) break;
                     continue;
                 }
                 if (rings.border[v] && options.check_border && !border_ok(v, p)) {
@@ -434,7 +434,7 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
                 }
                 accepted = true;
                 if (options.energy_guard) total = {total.x + delta.x, total.y + delta.y, total.a2 + delta.a2};
-                if (h > 0) ++stats.moves_shortened;
+                if (step < 1) ++stats.moves_shortened;  // short of the target (an over-relaxed step halved once is not)
                 break;
             }
             if (accepted) {
