@@ -15,4 +15,7 @@ namespace ctmap {
 ///      `mesh_topology`).
 std::vector<int> border_loop(const TriMesh& mesh);
 
+/// The same for a face list on vertices 0..num_vertices-1 (the cut's WorkMesh uses this).
+std::vector<int> border_loop(const std::vector<Tri>& faces, int num_vertices);
+
 }  // namespace ctmap

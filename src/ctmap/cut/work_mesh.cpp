@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "ctmap/border_loop.h"
 #include "ctmap/errors.h"
 
 namespace ctmap {
@@ -126,25 +127,6 @@ std::vector<WorkMesh::FanEntry> WorkMesh::fan(int v) const {
     return out;
 }
 
-std::vector<int> WorkMesh::border_loop() const {
-    std::unordered_map<int, int> next;  // border halfedge a -> b in face orientation
-    for (int e = 0; e < int(edges.size()); ++e) {
-        if (!is_border_edge(e)) continue;
-        const Tri& t = faces[edge_faces[e][0]];
-        for (int k = 0; k < 3; ++k) {
-            const int a = t[k], b = t[(k + 1) % 3];
-            if (edge_key(a, b) == edges[e]) next[a] = b;
-        }
-    }
-    std::vector<int> loop;
-    if (next.empty()) return loop;
-    const int start = std::min_element(next.begin(), next.end())->first;  // deterministic start
-    int v = start;
-    do {
-        loop.push_back(v);
-        v = next.at(v);
-    } while (v != start && loop.size() <= next.size());
-    return loop;
-}
+std::vector<int> WorkMesh::border_loop() const { return ctmap::border_loop(faces, num_vertices()); }
 
 }  // namespace ctmap
