@@ -16,11 +16,55 @@ bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.
 /// cut runs hundreds of searches on meshes of millions of faces.
 class SearchState;
 
+/// The faces a search may use: all of them, or those of a corridor, marked by a stamp in arrays
+/// that live as long as the thread (no cost proportional to the mesh per search).
+class Corridor {
+public:
+    /// Marks the faces around the vertices within `rings` rings of `seeds`.
+    void build(const WorkMesh& m, const std::vector<int>& seeds, int rings) {
+        if (++stamp_ == 0) {
+            std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0);
+            std::fill(face_stamp_.begin(), face_stamp_.end(), 0);
+            stamp_ = 1;
+        }
+        if (vertex_stamp_.size() < m.positions.size()) vertex_stamp_.resize(m.positions.size() * 5 / 4 + 1, 0);
+        if (face_stamp_.size() < m.faces.size()) face_stamp_.resize(m.faces.size() * 5 / 4 + 1, 0);
+        std::vector<int> layer;
+        for (int v : seeds)
+            if (vertex_stamp_[v] != stamp_) {
+                vertex_stamp_[v] = stamp_;
+                layer.push_back(v);
+            }
+        std::vector<int> next;
+        for (int r = 0; r <= rings; ++r) {
+            next.clear();
+            for (int v : layer)
+                for (int f : m.vertex_faces[v]) {
+                    face_stamp_[f] = stamp_;
+                    if (r == rings) continue;
+                    for (int w : m.faces[f])
+                        if (vertex_stamp_[w] != stamp_) {
+                            vertex_stamp_[w] = stamp_;
+                            next.push_back(w);
+                        }
+                }
+            layer.swap(next);
+        }
+    }
+    bool has(int f) const { return face_stamp_[f] == stamp_; }
+
+private:
+    std::uint32_t stamp_ = 0;
+    std::vector<std::uint32_t> vertex_stamp_, face_stamp_;
+};
+
 class SteinerGraph {
 public:
     using Node = std::uint64_t;
-    SteinerGraph(const WorkMesh& m, const PathConstraints& c, double spacing, SearchState& state)
-        : m_(m), c_(c), spacing_(spacing), state_(state) {}
+    SteinerGraph(const WorkMesh& m, const PathConstraints& c, double spacing, SearchState& state,
+                 const Corridor* corridor)
+        : m_(m), c_(c), spacing_(spacing), state_(state), corridor_(corridor) {}
+    bool allowed(int f) const { return !corridor_ || corridor_->has(f); }
     /// Number of points on edge e, from the search's cache (computed once per search and edge).
     inline int count(int e) const;
     /// Number of points on edge e, computed.
@@ -52,7 +96,7 @@ public:
             const int x = int(node_x);
             const bool src = x == c_.source;
             for (int f : m_.vertex_faces[x]) {
-                if (src && !contains(c_.source_sector.faces, f)) continue;
+                if (!allowed(f) || (src && !contains(c_.source_sector.faces, f))) continue;
                 const Tri& t = m_.faces[f];
                 const int k = t[0] == x ? 0 : t[1] == x ? 1 : 2;
                 const int p = t[(k + 1) % 3], q = t[(k + 2) % 3];
@@ -67,7 +111,7 @@ public:
         } else {
             const int e = locate(node_x).first;
             for (int f : m_.edge_faces[e]) {
-                if (f < 0) continue;
+                if (f < 0 || !allowed(f)) continue;
                 const Tri& t = m_.faces[f];
                 for (int k = 0; k < 3; ++k) {
                     const int g = m_.face_edges[f][k];
@@ -96,6 +140,7 @@ private:
     const PathConstraints& c_;
     double spacing_;
     SearchState& state_;
+    const Corridor* corridor_;
 };
 
 /// Search state of one node.
@@ -164,13 +209,13 @@ private:
 
 int SteinerGraph::count(int e) const { return state_.edge_count(*this, e); }
 
-}  // namespace
-
-std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& c, const PathSearchOptions& opt) {
+/// A* in the Steiner graph of the given spacing, inside `corridor` if there is one.
+std::optional<FoundPath> search(const WorkMesh& mesh, const PathConstraints& c, double spacing,
+                                const Corridor* corridor) {
     using Node = SteinerGraph::Node;
     thread_local SearchState states;
     states.begin(mesh);
-    const SteinerGraph g(mesh, c, opt.spacing, states);
+    const SteinerGraph g(mesh, c, spacing, states, corridor);
     const Vec3 goal = mesh.positions[c.target];
     auto state = [&](Node x) -> NodeState& { return states.at(g, x); };
     using Item = std::pair<double, Node>;  // (distance + bound, node)
@@ -225,6 +270,29 @@ std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& 
     }
     std::reverse(out.nodes.begin(), out.nodes.end());
     return out;
+}
+
+}  // namespace
+
+std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& c, const PathSearchOptions& opt) {
+    const double reach = (mesh.positions[c.source] - mesh.positions[c.target]).norm();
+    if (opt.corridor_rings <= 0 || reach < opt.corridor_min_distance * opt.spacing)
+        return search(mesh, c, opt.spacing, nullptr);
+    const std::optional<FoundPath> coarse = search(mesh, c, opt.spacing * opt.coarse_factor, nullptr);
+    if (!coarse) return search(mesh, c, opt.spacing, nullptr);
+    std::vector<int> seeds;
+    for (const PathNode& n : coarse->nodes) {
+        if (n.vertex >= 0) {
+            seeds.push_back(n.vertex);
+        } else {
+            seeds.push_back(n.a);
+            seeds.push_back(n.b);
+        }
+    }
+    thread_local Corridor corridor;
+    corridor.build(mesh, seeds, opt.corridor_rings);
+    if (std::optional<FoundPath> fine = search(mesh, c, opt.spacing, &corridor)) return fine;
+    return search(mesh, c, opt.spacing, nullptr);
 }
 
 }  // namespace ctmap

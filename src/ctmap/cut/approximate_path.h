@@ -30,6 +30,19 @@ struct PathConstraints {
 /// Options of the search.
 struct PathSearchOptions {
     double spacing = 0;  ///< Steiner point spacing (world units); > 0
+    /// Coarse to fine: search first with `coarse_factor` times the spacing (most edges then hold
+    /// no Steiner point or one), then at the spacing only inside the faces within
+    /// `corridor_rings` vertex rings of the coarse path. A* with the straight-line bound
+    /// explores a wide region wherever the surface curves away from the straight line (around a
+    /// head, a limb), which was most of the cut's time on a million triangles; the corridor keeps
+    /// the fine search to a band. 0 rings searches the whole fine graph at once, and so does a
+    /// path whose ends are closer than `corridor_min_distance` spacings (there the two searches
+    /// cost more than one). When the corridor holds no path (the coarse graph found one the fine
+    /// rules forbid) the whole graph is searched. A coarser graph (factor 6) strays too far: worst
+    /// paths 6.7% longer than the geodesic on lion-head against 2.3% (GeodesicAccuracy).
+    int corridor_rings = 2;
+    double coarse_factor = 4;
+    double corridor_min_distance = 100;
 };
 
 /// A path found by `find_path`.
@@ -43,6 +56,9 @@ struct FoundPath {
 /// the source through its sector and enters the target through its sector. Points on a free edge
 /// stay usable even when both its ends are blocked (an edge with no Steiner point then gets one),
 /// which lets a path squeeze between two others.
+/// With a corridor (`opt.corridor_rings > 0`) the path is the shortest inside the corridor,
+/// which is the shortest of the whole graph unless the coarse path strayed from it by more than
+/// the corridor (GeodesicAccuracy compares the two).
 /// \pre spacing > 0, source != target.
 /// \return nothing when the target cannot be reached in the graph.
 std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& c, const PathSearchOptions& opt);
