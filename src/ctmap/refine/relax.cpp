@@ -1,6 +1,9 @@
 #include "ctmap/refine/relax.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -332,14 +335,27 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
         for (int i = rings.face_offset[v]; i < rings.face_offset[v + 1]; ++i) face_sums(rings.faces[i], v, p, s);
         return s;
     };
-    Sums total;
     auto energy_of = [&](const Sums& t) { return (area3 / t.a2 * t.x + t.a2 / area3 * t.y) / area3; };
-    // E(total + delta) - E(total), written in the deltas so that a small change of one vertex
-    // is not lost in the rounding of sums over the whole mesh.
-    auto energy_change = [&](const Sums& delta) {
-        const double A2 = total.a2, A2n = total.a2 + delta.a2;
-        return area3 * (delta.x * A2 - total.x * delta.a2) / (A2 * A2n) +
-               (A2 * delta.y + delta.a2 * total.y + delta.a2 * delta.y) / area3;
+    // E(base + delta) - E(base), written in the deltas so that a small change of one vertex is
+    // not lost in the rounding of sums over the whole mesh.
+    auto energy_change = [&](const Sums& base, const Sums& delta) {
+        const double A2 = base.a2, A2n = base.a2 + delta.a2;
+        return area3 * (delta.x * A2 - base.x * delta.a2) / (A2 * A2n) +
+               (A2 * delta.y + delta.a2 * base.y + delta.a2 * delta.y) / area3;
+    };
+    // The sums over every face, in fixed chunks added in order: the same bits whatever the
+    // number of threads.
+    auto sum_all_faces = [&]() {
+        constexpr int kChunk = 4096;
+        const int chunks = (mesh.num_faces() + kChunk - 1) / kChunk;
+        std::vector<Sums> part(chunks);
+        tbb::parallel_for(0, chunks, [&](int c) {
+            const int end = std::min(mesh.num_faces(), (c + 1) * kChunk);
+            for (int f = c * kChunk; f < end; ++f) face_sums(f, -1, Vec2::Zero(), part[c]);
+        });
+        Sums t;
+        for (const Sums& p : part) t = {t.x + p.x, t.y + p.y, t.a2 + p.a2};
+        return t;
     };
 
     auto triangles_ok = [&](int v, const Vec2& p) {
@@ -375,76 +391,154 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
     // Over-relaxation only with the guard: without it nothing stops an overshooting sweep from
     // growing (the virtual-image rows are affine, not convex; nefertiti's energy went to 1e19).
     const double omega = options.energy_guard ? options.over_relaxation : 1.0;
+    // Set by a vertex's neighbours, possibly by two threads at once (always to 1).
     std::vector<char> active(nv, 1);
+    auto activate = [&](int v) { std::atomic_ref<char>(active[v]).store(1, std::memory_order_relaxed); };
+
+    // What the moves of a group of vertices did; added up in a fixed order after each phase.
+    struct Tally {
+        long moves = 0, shortened = 0, rejected = 0, border_rejections = 0, energy_rejections = 0;
+        double max_move = 0;
+        Sums delta;
+    };
+    // One vertex's move, judged against the energy sums `base` (see the phases below).
+    auto relax_vertex = [&](int v, const Sums& base, double negligible, Tally& tally) {
+        // Only vertices whose neighbourhood changed since they were last looked at can have a
+        // new target or a newly allowed move: near convergence most of the mesh is skipped.
+        if (!active[v]) return;
+        active[v] = 0;
+        Vec2 target = Vec2::Zero();
+        for (int i = w_offset[v]; i < w_offset[v + 1]; ++i) target += w_val[i] * uv[w_nbr[i]];
+        const Vec2 d = target - uv[v];
+        if (!(d.norm() > negligible)) return;
+        double step = omega;
+        bool accepted = false;
+        const Sums old_local = options.energy_guard ? local_sums(v, uv[v]) : Sums();
+        Sums delta;
+        auto energy_ok = [&](const Vec2& p) {
+            const Sums l = local_sums(v, p);
+            delta = {l.x - old_local.x, l.y - old_local.y, l.a2 - old_local.a2};
+            return energy_change(base, delta) <= 0;
+        };
+        for (int h = 0; h <= options.max_halvings; ++h, step *= 0.5) {
+            const Vec2 p = uv[v] + step * d;
+            if (p == uv[v]) break;
+            if (!triangles_ok(v, p)) continue;
+            if (options.energy_guard && !energy_ok(p)) {
+                ++tally.energy_rejections;
+                // If even the shortest step raises the energy, the direction climbs: stop here
+                // instead of trying every length in between.
+                if (h == 0 && !energy_ok(uv[v] + omega * std::ldexp(1.0, -options.max_halvings) * d)) break;
+                continue;
+            }
+            if (rings.border[v] && options.check_border && !border_ok(v, p)) {
+                ++tally.border_rejections;
+                continue;
+            }
+            if (rings.border[v]) {
+                grid.remove(out_edge[v]);
+                grid.remove(in_edge(v));
+                uv[v] = p;
+                grid.insert(out_edge[v]);
+                grid.insert(in_edge(v));
+            } else {
+                uv[v] = p;
+            }
+            accepted = true;
+            if (options.energy_guard)
+                tally.delta = {tally.delta.x + delta.x, tally.delta.y + delta.y, tally.delta.a2 + delta.a2};
+            if (step < 1) ++tally.shortened;  // short of the target (an over-relaxed step halved once is not)
+            break;
+        }
+        if (accepted) {
+            ++tally.moves;
+            tally.max_move = std::max(tally.max_move, step * d.norm());
+            activate(v);
+            for (int i = rings.begin(v); i < rings.end(v); ++i) activate(rings.nbr[i]);
+        } else {
+            ++tally.rejected;
+        }
+    };
+
+    // The sweep in phases. Interior free vertices are coloured so that no two of one colour
+    // share a face: a vertex's move reads and checks only its own faces, whose other corners
+    // then stay put while its colour is moved, so a colour is moved in parallel and every check
+    // is exactly the sequential one. The energy guard judges the moves of a colour against the
+    // sums at the colour's start (the changes are local; they are added up after the colour).
+    // Border vertices check their border edges against every other border edge, which may be
+    // moving too, so they move one by one, each against the running sums. Chunks are fixed and
+    // tallies added in order, so the result does not depend on the number of threads.
+    std::vector<int> colour(nv, -1);
+    std::vector<std::vector<int>> colours;
+    std::vector<int> border_free;
+    for (int v = 0; v < nv; ++v) {
+        if (!is_free[v]) continue;
+        if (rings.border[v]) {
+            border_free.push_back(v);
+            continue;
+        }
+        std::uint64_t used = 0;  // colours of the neighbours (a vertex has < 64 of them in practice)
+        std::vector<char> used_big;
+        for (int i = rings.begin(v); i < rings.end(v); ++i) {
+            const int c = colour[rings.nbr[i]];
+            if (c < 0) continue;
+            if (c < 64) used |= std::uint64_t(1) << c;
+            else {
+                if (int(used_big.size()) <= c) used_big.resize(c + 1, 0);
+                used_big[c] = 1;
+            }
+        }
+        int c = 0;
+        while (c < 64 && (used >> c & 1)) ++c;
+        while (c >= 64 && c < int(used_big.size()) && used_big[c]) ++c;
+        colour[v] = c;
+        if (int(colours.size()) <= c) colours.resize(c + 1);
+        colours[c].push_back(v);
+    }
+    auto add = [&](const Tally& t, Sums& total) {
+        stats.moves += t.moves;
+        stats.moves_shortened += t.shortened;
+        stats.moves_rejected += t.rejected;
+        stats.border_rejections += t.border_rejections;
+        stats.energy_rejections += t.energy_rejections;
+        total = {total.x + t.delta.x, total.y + t.delta.y, total.a2 + t.delta.a2};
+    };
+
     for (int it = 0; it < options.max_iterations; ++it) {
         Eigen::AlignedBox2d box;
         for (const Vec2& p : uv) box.extend(p);
         const double diag = box.diagonal().norm();
         if (!(diag > 0)) break;
         const double negligible = 1e-3 * options.tolerance * diag;
+        Sums total;
         double sweep_start_energy = 0;
         if (options.energy_guard) {  // recomputed each sweep so that rounding does not drift
-            total = Sums();
-            for (int f = 0; f < mesh.num_faces(); ++f) face_sums(f, -1, Vec2::Zero(), total);
+            total = sum_all_faces();
             sweep_start_energy = energy_of(total);
             if (it == 0) stats.energy_before = sweep_start_energy;
         }
         double max_move = 0;
-        for (int v = 0; v < nv; ++v) {
-            // Only vertices whose neighbourhood changed since they were last looked at can have
-            // a new target or a newly allowed move: near convergence most of the mesh is skipped.
-            if (!is_free[v] || !active[v]) continue;
-            active[v] = 0;
-            Vec2 target = Vec2::Zero();
-            for (int i = w_offset[v]; i < w_offset[v + 1]; ++i) target += w_val[i] * uv[w_nbr[i]];
-            const Vec2 d = target - uv[v];
-            if (!(d.norm() > negligible)) continue;
-            double step = omega;
-            bool accepted = false;
-            const Sums old_local = options.energy_guard ? local_sums(v, uv[v]) : Sums();
-            Sums delta;
-            auto energy_ok = [&](const Vec2& p) {
-                const Sums l = local_sums(v, p);
-                delta = {l.x - old_local.x, l.y - old_local.y, l.a2 - old_local.a2};
-                return energy_change(delta) <= 0;
+        for (const std::vector<int>& members : colours) {
+            constexpr int kChunk = 256;
+            const int chunks = (int(members.size()) + kChunk - 1) / kChunk;
+            std::vector<Tally> tallies(chunks);
+            const Sums base = total;
+            auto run = [&](int c) {
+                const int end = std::min(int(members.size()), (c + 1) * kChunk);
+                for (int i = c * kChunk; i < end; ++i) relax_vertex(members[i], base, negligible, tallies[c]);
             };
-            for (int h = 0; h <= options.max_halvings; ++h, step *= 0.5) {
-                const Vec2 p = uv[v] + step * d;
-                if (p == uv[v]) break;
-                if (!triangles_ok(v, p)) continue;
-                if (options.energy_guard && !energy_ok(p)) {
-                    ++stats.energy_rejections;
-                    // If even the shortest step raises the energy, the direction climbs: stop
-                    // here instead of trying every length in between.
-                    if (h == 0 && !energy_ok(uv[v] + omega * std::ldexp(1.0, -options.max_halvings) * d)) break;
-                    continue;
-                }
-                if (rings.border[v] && options.check_border && !border_ok(v, p)) {
-                    ++stats.border_rejections;
-                    continue;
-                }
-                if (rings.border[v]) {
-                    grid.remove(out_edge[v]);
-                    grid.remove(in_edge(v));
-                    uv[v] = p;
-                    grid.insert(out_edge[v]);
-                    grid.insert(in_edge(v));
-                } else {
-                    uv[v] = p;
-                }
-                accepted = true;
-                if (options.energy_guard) total = {total.x + delta.x, total.y + delta.y, total.a2 + delta.a2};
-                if (step < 1) ++stats.moves_shortened;  // short of the target (an over-relaxed step halved once is not)
-                break;
+            if (options.parallel) tbb::parallel_for(0, chunks, run);
+            else for (int c = 0; c < chunks; ++c) run(c);
+            for (const Tally& t : tallies) {
+                add(t, total);
+                max_move = std::max(max_move, t.max_move);
             }
-            if (accepted) {
-                ++stats.moves;
-                max_move = std::max(max_move, step * d.norm());
-                active[v] = 1;
-                for (int i = rings.begin(v); i < rings.end(v); ++i) active[rings.nbr[i]] = 1;
-            } else {
-                ++stats.moves_rejected;
-            }
+        }
+        for (int v : border_free) {
+            Tally t;
+            relax_vertex(v, total, negligible, t);
+            add(t, total);
+            max_move = std::max(max_move, t.max_move);
         }
         stats.iterations = it + 1;
         stats.last_gain = max_move / diag;

@@ -50,6 +50,9 @@ struct RelaxOptions {
     /// (BENCHMARKS.md). The energy guard and the validity checks still decide every move; without
     /// the guard the plain move is used.
     double over_relaxation = 1.9;
+    /// Move the vertices of one colour class (no two share a face) in parallel (TBB). The result
+    /// is the same, bit for bit, with any number of threads or with this off.
+    bool parallel = true;
 };
 
 /// What `relax` did.
@@ -74,7 +77,9 @@ struct RelaxStats {
 /// orientation (exact predicate) and, for a border vertex, its two border edges cross or touch no
 /// other border edge; otherwise it is halved until it is. Since orientation is linear in a
 /// vertex's position, the whole segment of a move is then valid, and with a simple border and
-/// all triangles positive the map stays one-to-one. Each sweep costs O(V + F).
+/// all triangles positive the map stays one-to-one. Each sweep costs O(V + F). A sweep moves
+/// the interior vertices colour by colour (no two of a colour share a face, so a colour moves in
+/// parallel with exactly the sequential checks), then the border vertices one by one.
 /// \param fixed vertices that never move (the features); their UVs are left bitwise untouched.
 /// \pre uv.size() == mesh.num_vertices(); `mesh` is a manifold disc (or several); the map is
 ///      valid (every UV triangle of the same nonzero orientation).
