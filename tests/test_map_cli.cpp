@@ -5,6 +5,7 @@
 // the same UVs as floats; refinement must lower the symmetric Dirichlet mean. Failures leave the
 // output folder empty.
 #include <nlohmann/json.hpp>
+#include <ostream>
 
 #include "ctmap/certify/certificate.h"
 #include "ctmap/io/features.h"
@@ -20,6 +21,9 @@ struct RealCase {
     const char* features;
     const char* image;
 };
+
+// Test listings and failures name the case instead of printing its bytes.
+void PrintTo(const RealCase& c, std::ostream* os) { *os << c.mesh << " / " << c.features << " / " << c.image; }
 
 const RealCase kCases[] = {{"nefertiti", "nefertiti_astronaut", "astronaut"},
                            {"lion-head", "lion-head_chelsea", "chelsea"},

@@ -278,8 +278,13 @@ std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& 
     const double reach = (mesh.positions[c.source] - mesh.positions[c.target]).norm();
     if (opt.corridor_rings <= 0 || reach < opt.corridor_min_distance * opt.spacing)
         return search(mesh, c, opt.spacing, nullptr);
+    auto whole_graph = [&] {
+        std::optional<FoundPath> p = search(mesh, c, opt.spacing, nullptr);
+        if (p) p->search = FoundPath::Search::whole_graph_after_corridor;
+        return p;
+    };
     const std::optional<FoundPath> coarse = search(mesh, c, opt.spacing * opt.coarse_factor, nullptr);
-    if (!coarse) return search(mesh, c, opt.spacing, nullptr);
+    if (!coarse) return whole_graph();
     std::vector<int> seeds;
     for (const PathNode& n : coarse->nodes) {
         if (n.vertex >= 0) {
@@ -291,8 +296,11 @@ std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& 
     }
     thread_local Corridor corridor;
     corridor.build(mesh, seeds, opt.corridor_rings);
-    if (std::optional<FoundPath> fine = search(mesh, c, opt.spacing, &corridor)) return fine;
-    return search(mesh, c, opt.spacing, nullptr);
+    if (std::optional<FoundPath> fine = search(mesh, c, opt.spacing, &corridor)) {
+        fine->search = FoundPath::Search::corridor;
+        return fine;
+    }
+    return whole_graph();
 }
 
 }  // namespace ctmap

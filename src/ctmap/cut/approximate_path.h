@@ -37,9 +37,11 @@ struct PathSearchOptions {
     /// head, a limb), which was most of the cut's time on a million triangles; the corridor keeps
     /// the fine search to a band. 0 rings searches the whole fine graph at once, and so does a
     /// path whose ends are closer than `corridor_min_distance` spacings (there the two searches
-    /// cost more than one). When the corridor holds no path (the coarse graph found one the fine
-    /// rules forbid) the whole graph is searched. A coarser graph (factor 6) strays too far: worst
-    /// paths 6.7% longer than the geodesic on lion-head against 2.3% (GeodesicAccuracy).
+    /// cost more than one). The rules are the same in both graphs, but the coarse one has other
+    /// crossing points and the corridor a border (a move whose face lies outside is not offered),
+    /// so either search may find nothing where the whole fine graph has a path: then the whole
+    /// graph is searched. A coarser graph (factor 6) strays too far: worst paths 6.7% longer than
+    /// the geodesic on lion-head against 2.3% (GeodesicAccuracy).
     int corridor_rings = 2;
     double coarse_factor = 4;
     double corridor_min_distance = 100;
@@ -49,18 +51,23 @@ struct PathSearchOptions {
 struct FoundPath {
     std::vector<PathNode> nodes;
     double length = 0;
+    /// Which search found it: the whole fine graph at once, the corridor, or the whole fine graph
+    /// after the coarse search or the corridor found nothing.
+    enum class Search { whole_graph, corridor, whole_graph_after_corridor };
+    Search search = Search::whole_graph;
 };
 
-/// Shortest path in the Steiner graph from `c.source` to `c.target` that avoids blocked vertices
+/// A short path in the Steiner graph from `c.source` to `c.target` that avoids blocked vertices
 /// and path edges (Steiner points are never put on path edges, so it cannot cross a path), leaves
 /// the source through its sector and enters the target through its sector. Points on a free edge
 /// stay usable even when both its ends are blocked (an edge with no Steiner point then gets one),
-/// which lets a path squeeze between two others.
-/// With a corridor (`opt.corridor_rings > 0`) the path is the shortest inside the corridor,
-/// which is the shortest of the whole graph unless the coarse path strayed from it by more than
-/// the corridor (GeodesicAccuracy compares the two).
+/// which lets a path squeeze between two others. Ends closer than `opt.corridor_min_distance`
+/// spacings, or `opt.corridor_rings == 0`: the shortest such path of the whole graph (A*).
+/// Otherwise the shortest inside the corridor of a coarse path (`FoundPath::search` says which
+/// search found it), which is at most a little longer (GeodesicAccuracy and
+/// Cut.CorridorPathsAreNearlyAsShortAsWholeGraphPaths measure how much).
 /// \pre spacing > 0, source != target.
-/// \return nothing when the target cannot be reached in the graph.
+/// \return nothing when the target cannot be reached in the whole fine graph.
 std::optional<FoundPath> find_path(const WorkMesh& mesh, const PathConstraints& c, const PathSearchOptions& opt);
 
 }  // namespace ctmap

@@ -174,6 +174,8 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
 
     PathSearchOptions search;
     search.spacing = steiner_spacing(input, opt);
+    search.corridor_rings = opt.corridor_rings;
+    search.corridor_min_distance = opt.corridor_min_distance;
     const int total = int(order.size());
     for (int i = 0; i < total; ++i) {
         const auto [u, w] = order[i];
@@ -197,7 +199,11 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
             PathSearchOptions s = search;
             s.spacing = search.spacing / double(1 << std::min(attempt, 4));
             found = find_path(net.mesh, c, s);
-            if (found) break;
+            if (found) {
+                if (found->search == FoundPath::Search::corridor) ++stats.corridor_paths;
+                if (found->search == FoundPath::Search::whole_graph_after_corridor) ++stats.corridor_misses;
+                break;
+            }
             if (attempt == 0) ++stats.fallback_fired;
             const int added = net.refine_sector(c.source_sector) + net.refine_sector(net.sector(w, u));
             stats.steiner_vertices += added;

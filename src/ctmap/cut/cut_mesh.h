@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "ctmap/cut/approximate_path.h"
 #include "ctmap/domain/feature_triangulation.h"
 #include "ctmap/mesh.h"
 
@@ -51,6 +52,11 @@ struct CutOptions {
     /// for comparison; a geodesic that breaks the path rules (it may cross a path, pass through a
     /// blocked vertex or leave outside its sector) is replaced by the approximate search.
     bool exact_geodesics = false;
+    /// The coarse-to-fine search (see PathSearchOptions): vertex rings of the corridor (0: every
+    /// path in the whole fine graph), and the distance between a path's ends, in spacings, from
+    /// which it is used.
+    int corridor_rings = PathSearchOptions{}.corridor_rings;
+    double corridor_min_distance = PathSearchOptions{}.corridor_min_distance;
     /// How many times the fallback may refine around a path's ends before giving up.
     int max_refinements = 8;
     /// Called with a short message as paths are inserted (for progress lines).
@@ -66,6 +72,8 @@ struct CutStats {
     double path_length = 0;     ///< total length of the interior paths
     int exact_paths = 0;        ///< paths inserted as exact geodesics (exact_geodesics on)
     int exact_rejected = 0;     ///< exact geodesics that broke the rules: approximate search used
+    int corridor_paths = 0;     ///< paths found in the corridor of a coarse path
+    int corridor_misses = 0;    ///< paths the coarse search or its corridor missed: whole graph searched
 };
 
 /// The Steiner point spacing the path search of `cut_mesh` uses on `mesh` (world units):

@@ -349,10 +349,12 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
         constexpr int kChunk = 4096;
         const int chunks = (mesh.num_faces() + kChunk - 1) / kChunk;
         std::vector<Sums> part(chunks);
-        tbb::parallel_for(0, chunks, [&](int c) {
+        auto run = [&](int c) {
             const int end = std::min(mesh.num_faces(), (c + 1) * kChunk);
             for (int f = c * kChunk; f < end; ++f) face_sums(f, -1, Vec2::Zero(), part[c]);
-        });
+        };
+        if (options.parallel) tbb::parallel_for(0, chunks, run);
+        else for (int c = 0; c < chunks; ++c) run(c);
         Sums t;
         for (const Sums& p : part) t = {t.x + p.x, t.y + p.y, t.a2 + p.a2};
         return t;
@@ -462,9 +464,10 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
 
     // The sweep in phases. Interior free vertices are coloured so that no two of one colour
     // share a face: a vertex's move reads and checks only its own faces, whose other corners
-    // then stay put while its colour is moved, so a colour is moved in parallel and every check
-    // is exactly the sequential one. The energy guard judges the moves of a colour against the
-    // sums at the colour's start (the changes are local; they are added up after the colour).
+    // then stay put while its colour is moved, so a colour is moved in parallel and every
+    // orientation check is exactly the one a single thread would make. The energy guard judges
+    // the moves of a colour against the sums at the colour's start (each move changes only its
+    // own faces' terms; the changes are added up after the colour), not against running sums.
     // Border vertices check their border edges against every other border edge, which may be
     // moving too, so they move one by one, each against the running sums. Chunks are fixed and
     // tallies added in order, so the result does not depend on the number of threads.

@@ -50,8 +50,9 @@ struct RelaxOptions {
     /// (BENCHMARKS.md). The energy guard and the validity checks still decide every move; without
     /// the guard the plain move is used.
     double over_relaxation = 1.9;
-    /// Move the vertices of one colour class (no two share a face) in parallel (TBB). The result
-    /// is the same, bit for bit, with any number of threads or with this off.
+    /// Move the vertices of one colour class (no two share a face) in parallel, and sum the
+    /// energy in parallel (TBB); off, one thread does the same steps in the same order. The
+    /// result is the same, bit for bit, with any number of threads or with this off.
     bool parallel = true;
 };
 
