@@ -33,13 +33,7 @@ const Case& make_case(const std::string& name, int count) {
     std::mt19937 rng(1000 + count);
     const auto rf = ctmap::test::random_features(c.mesh, ctmap::test::tutte_map(c.mesh), count,
                                                  std::min(40, 3 + count / 4), 1.0, rng);
-    for (std::size_t i = 0; i < rf.vertex.size(); ++i) {
-        ctmap::MapFeature f;
-        f.name = "f" + std::to_string(i);
-        f.vertex = rf.vertex[i];
-        f.uv = rf.uv[i];
-        c.features.push_back(f);
-    }
+    c.features = ctmap::test::map_features_of(rf);
     return cache.emplace(std::make_pair(name, count), std::move(c)).first->second;
 }
 

@@ -32,14 +32,7 @@ const Scene& scene() {
         const ctmap::TriMesh mesh = ctmap::read_mesh(ctmap::find_data_file("meshes/mannequin-devil.off"));
         std::mt19937 rng(5);
         const auto rf = ctmap::test::random_features(mesh, ctmap::test::tutte_map(mesh), 12, 6, 1.0, rng);
-        std::vector<ctmap::MapFeature> features;
-        for (std::size_t i = 0; i < rf.vertex.size(); ++i) {
-            ctmap::MapFeature f;
-            f.name = "f" + std::to_string(i);
-            f.vertex = rf.vertex[i];
-            f.uv = rf.uv[i];
-            features.push_back(f);
-        }
+        const std::vector<ctmap::MapFeature> features = ctmap::test::map_features_of(rf);
         const ctmap::MapResult r = ctmap::map_texture(mesh, features);
         x.map = r.textured();
         x.feature_vertex = r.cut.feature_vertex;

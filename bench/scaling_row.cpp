@@ -96,12 +96,7 @@ int main(int argc, char** argv) {
         const std::vector<Vec2> tutte = ctmap::test::tutte_map(mesh);
         const int border = std::max(3, std::min(40, features / 4));
         const auto rf = ctmap::test::random_features(mesh, tutte, features, border, 1.0, rng);
-        std::vector<MapFeature> mf(rf.vertex.size());
-        for (std::size_t i = 0; i < mf.size(); ++i) {
-            mf[i].name = "f" + std::to_string(i);
-            mf[i].vertex = rf.vertex[i];
-            mf[i].uv = rf.uv[i];
-        }
+        const std::vector<MapFeature> mf = ctmap::test::map_features_of(rf);
         std::vector<double> tri, paths, embed, refine, certify, total, cgal;
         MapResult last;
         bool cgal_ok = true;

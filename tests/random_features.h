@@ -7,6 +7,7 @@
 
 #include "ctmap/cut/work_mesh.h"
 #include "ctmap/domain/starter_features.h"
+#include "ctmap/map_texture.h"
 #include "ctmap/mesh.h"
 
 namespace ctmap::test {
@@ -76,6 +77,17 @@ inline RandomFeatures random_features(const TriMesh& mesh, const std::vector<Vec
         if (!inside(q)) continue;
         out.vertex.push_back(v);
         out.uv.push_back(q);
+    }
+    return out;
+}
+
+/// The set as `map_texture` takes it: features named f0, f1, ... in order.
+inline std::vector<MapFeature> map_features_of(const RandomFeatures& rf) {
+    std::vector<MapFeature> out(rf.vertex.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        out[i].name = "f" + std::to_string(i);
+        out[i].vertex = rf.vertex[i];
+        out[i].uv = rf.uv[i];
     }
     return out;
 }

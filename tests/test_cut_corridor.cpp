@@ -29,12 +29,7 @@ TEST(Cut, CorridorPathsAreNearlyAsShortAsWholeGraphPaths) {
         const TriMesh mesh = read_mesh(data(std::string("meshes/") + k.mesh));
         std::mt19937 rng(k.seed);
         const RandomFeatures rf = random_features(mesh, tutte_map(mesh), k.features, 8, k.twist, rng);
-        std::vector<MapFeature> features(rf.vertex.size());
-        for (std::size_t i = 0; i < rf.vertex.size(); ++i) {
-            features[i].name = "f" + std::to_string(i);
-            features[i].vertex = rf.vertex[i];
-            features[i].uv = rf.uv[i];
-        }
+        const std::vector<MapFeature> features = map_features_of(rf);
         const std::string what = std::string(k.mesh) + ", " + std::to_string(rf.vertex.size()) + " features";
         MapOptions corridor, whole;
         corridor.cut.corridor_min_distance = 0;  // every path through a corridor

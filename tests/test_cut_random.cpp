@@ -50,12 +50,7 @@ Totals run_plan(const Plan& plan, std::uint32_t seed) {
         const std::string what = std::string(plan.mesh) + " case " + std::to_string(c) + " (" +
                                  std::to_string(rf.vertex.size()) + " features, " + std::to_string(nb) +
                                  " on the border, twist " + std::to_string(twist) + (mirror ? ", mirrored" : "") + ")";
-        std::vector<MapFeature> features(rf.vertex.size());
-        for (std::size_t i = 0; i < rf.vertex.size(); ++i) {
-            features[i].name = "f" + std::to_string(i);
-            features[i].vertex = rf.vertex[i];
-            features[i].uv = rf.uv[i];
-        }
+        const std::vector<MapFeature> features = map_features_of(rf);
         if (const char* only = std::getenv("CTMAP_CASE"); only && std::atoi(only) != c) continue;  // one case alone
         ++t.cases;
         if (std::getenv("CTMAP_VERBOSE")) std::cout << what << " ..." << std::endl;

@@ -197,12 +197,7 @@ void run_plan(const Plan& plan, std::uint32_t seed) {
             lscm.few_invalid += few;
         }
 
-        std::vector<MapFeature> features(rf.vertex.size());
-        for (std::size_t i = 0; i < rf.vertex.size(); ++i) {
-            features[i].name = "f" + std::to_string(i);
-            features[i].vertex = rf.vertex[i];
-            features[i].uv = rf.uv[i];
-        }
+        const std::vector<MapFeature> features = map_features_of(rf);
         try {
             const MapResult r = map_texture(mesh, features);
             // The written map, certified again from scratch by the same exact predicates.

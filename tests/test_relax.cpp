@@ -188,12 +188,7 @@ TEST(Relax, ParallelSweepsGiveTheSameMapWithAnyNumberOfThreads) {
     const TriMesh mesh = read_mesh(data("meshes/lion-head.off"));
     std::mt19937 rng(7);
     const auto rf = random_features(mesh, tutte_map(mesh), 50, 12, 1.0, rng);
-    std::vector<MapFeature> mf(rf.vertex.size());
-    for (std::size_t i = 0; i < mf.size(); ++i) {
-        mf[i].name = "f" + std::to_string(i);
-        mf[i].vertex = rf.vertex[i];
-        mf[i].uv = rf.uv[i];
-    }
+    const std::vector<MapFeature> mf = map_features_of(rf);
     MapOptions bare;
     bare.refine = false;
     const MapResult r = map_texture(mesh, mf, bare);
