@@ -224,12 +224,14 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
     // Path edges by edge id: the flood below crosses every face's edges, and a hash lookup each
     // was a tenth of the cut on a million triangles.
     std::vector<char> on_path(m.edges.size(), 0);
-    for (const auto& [ends, chain] : net.chains)
+    for (const auto& [ends, chain] : net.chains) {
+        if (ends.first > ends.second) continue;  // the same chain reversed: already marked
         for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
             const int e = m.find_edge(chain[i], chain[i + 1]);
             if (e < 0) throw InternalError("cut: a path runs along an edge the mesh does not have");
             on_path[e] = 1;
         }
+    }
     std::vector<int> comp(nf, -1);
     int ncomp = 0;
     for (int f0 = 0; f0 < nf; ++f0) {
