@@ -56,8 +56,8 @@ std::string features_json(const std::string& features, const std::string& extra 
 }
 const char* const kThreeFeatures =
     R"({"name": "a", "vertex": 0, "image": [10, 20]},
-       {"name": "b", "vertex": 8, "image": [30, 40]},
-       {"name": "c", "vertex": 7, "image": [50, 60]})";
+       {"name": "b", "vertex": 8, "image": [300, 40]},
+       {"name": "c", "vertex": 7, "image": [50, 400]})";  // a triangle: `validate` checks the layout too
 
 std::string image_bytes() { return read_file(data("images/astronaut.png")); }
 
@@ -190,7 +190,7 @@ const Case kMeshCases[] = {
     {"UnknownExtension",
      [](const TempDir& d) { return convert_obj(d, "m.xyz", std::string(kTriangleOff) + "3 0 1 2\n", {"unknown mesh format"}); }},
     {"MissingFile",
-     [](const TempDir& d) { return CliRun{"convert " + q(d / "nothing.off") + " -o " + q(d / "out.obj"), d / "nothing.off", {"no such file"}}; }},
+     [](const TempDir& d) { return CliRun{"convert " + q(d / "nothing.off") + " -o " + q(d / "out.obj"), d / "nothing.off", {"no such mesh file"}}; }},
     {"DirectoryInsteadOfFile",
      [](const TempDir& d) {
          std::filesystem::create_directory(d / "folder.off");

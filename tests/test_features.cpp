@@ -87,8 +87,18 @@ TEST(Features, CliFindsTheImageBesideTheFeaturesFileAndArgumentOverridesIt) {
     EXPECT_EQ(r.code, 0) << r.out;
     EXPECT_TRUE(has(r.out, "512 x 512")) << r.out;
     EXPECT_TRUE(has(r.out, dir / "set/img/photo.png")) << r.out;
-    // --image overrides it: a 300 x 451 image puts feature a (500, 500) outside.
+    // --image overrides it, but the pixels were picked on the 512 x 512 photo: a 451 x 300 image is
+    // refused with both sizes named (issue 17: the map would be certified and wrong).
     r = run_ctmap("validate " + q(mesh) + " " + q(dir / "set/f.json") + " --image " + q(data("images/chelsea.png")));
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_TRUE(has(r.out, "photo.png (512 x 512)")) << r.out;
+    EXPECT_TRUE(has(r.out, "is 451 x 300")) << r.out;
+    // Without an image of its own, the points are checked against the image given: a (500, 500) is
+    // outside the 451 x 300 one.
+    write_file(dir / "set/g.json", R"({"features": [
+        {"name": "a", "vertex": 0, "image": [500, 500]}, {"name": "b", "vertex": 8, "image": [3, 4]},
+        {"name": "c", "vertex": 7, "image": [5, 6]}]})");
+    r = run_ctmap("validate " + q(mesh) + " " + q(dir / "set/g.json") + " --image " + q(data("images/chelsea.png")));
     EXPECT_EQ(r.code, 2) << r.out;
     EXPECT_TRUE(has(r.out, "feature 'a'")) << r.out;
     EXPECT_TRUE(has(r.out, "outside the 451 x 300 image")) << r.out;

@@ -17,6 +17,7 @@
 #include "ctmap/io/map_report.h"
 #include "ctmap/io/mesh_topology.h"
 #include "ctmap/io/obj_io.h"
+#include "ctmap/io/output_paths.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
 
@@ -31,20 +32,37 @@ std::string fixed(double x, int digits) {
     return os.str();
 }
 
-/// The progress line on a terminal: one line rewritten in place, cleared at the end.
+/// Progress on stderr. On a terminal: one line rewritten in place, cleared at the end. Elsewhere
+/// (a log of a long job): a line when a stage that ran longer than a second ends, and a line
+/// every 5 seconds within a long stage.
 class Progress {
 public:
-    explicit Progress(bool enabled) : on_(enabled) {}
+    using Clock = std::chrono::steady_clock;
+    Progress(bool enabled, bool terminal) : on_(enabled), terminal_(terminal) {}
     ~Progress() { clear(); }
     void operator()(const std::string& stage, int done, int total) {
         if (!on_) return;
+        const auto now = Clock::now();
+        if (stage != stage_) {
+            finish(now);
+            stage_ = stage;
+            stage_start_ = last_line_ = now;
+        }
         std::string line = "ctmap map: " + stage;
         if (total > 0) line += " " + std::to_string(done) + "/" + std::to_string(total);
-        std::fprintf(stderr, "\r%-60s", line.c_str());
+        if (terminal_) {
+            std::fprintf(stderr, "\r%-60s", line.c_str());
+            shown_ = true;
+        } else if (seconds(last_line_, now) >= 5) {
+            std::fprintf(stderr, "%s (%.0f s)\n", line.c_str(), seconds(stage_start_, now));
+            last_line_ = now;
+        }
         std::fflush(stderr);
-        shown_ = true;
     }
+    /// Ends the last stage (its line, off a terminal) and clears the terminal's line.
     void clear() {
+        finish(Clock::now());
+        stage_.clear();
         if (!shown_) return;
         std::fprintf(stderr, "\r%-60s\r", "");
         std::fflush(stderr);
@@ -52,9 +70,26 @@ public:
     }
 
 private:
-    bool on_;
+    static double seconds(Clock::time_point a, Clock::time_point b) {
+        return std::chrono::duration<double>(b - a).count();
+    }
+    void finish(Clock::time_point now) {
+        if (!on_ || terminal_ || stage_.empty() || seconds(stage_start_, now) < 1) return;
+        std::fprintf(stderr, "ctmap map: %s done in %.1f s\n", stage_.c_str(), seconds(stage_start_, now));
+        std::fflush(stderr);
+    }
+    bool on_, terminal_;
     bool shown_ = false;
+    std::string stage_;
+    Clock::time_point stage_start_, last_line_;
 };
+
+/// The first line of `ctmap map`'s output, printed as soon as the inputs are read.
+void print_map_header(const MapArgs& a, std::size_t features, const MapRun& run, std::ostream& os) {
+    os << "ctmap map: " << a.mesh << " with " << features << " features on "
+       << (run.image.empty() ? std::string("a") : run.image) << " (" << run.width << " x " << run.height << ")"
+       << std::endl;
+}
 
 }  // namespace
 
@@ -65,18 +100,33 @@ MapRun run_map(const MapArgs& a) {
         throw BadInput(a.output, "the output must be an .obj file (its .mtl is written beside it)");
     if (!a.glb.empty() && fs::path(a.glb).extension() != ".glb")
         throw BadInput(a.glb, "--glb must name a .glb file");
+    const std::string mtl = (fs::path(a.output).parent_path() / (fs::path(a.output).stem().string() + ".mtl")).string();
+    // Before any work: no output overwrites an input or another output, and each can be created.
+    check_outputs({{a.mesh, "the mesh"}, {a.features, "the features file"}, {a.image, "the image"}},
+                  {{a.output, "the output (-o)"}, {mtl, "the output's material file"}, {a.glb, "--glb"},
+                   {a.report, "--report"}});
     const TriMesh mesh = read_mesh(a.mesh);
     require_disc(compute_topology(mesh), a.mesh);
     FeatureSet features = read_features(a.features);
     MapRun run;
     run.image = resolve_feature_image(features, a.image, run.width, run.height);
-    check_features_on_mesh(features, mesh, a.mesh);
+    if (a.image.empty() && !run.image.empty())  // the features file's image: an input too
+        check_outputs({{run.image, "the image"}}, {{a.output, "the output (-o)"}, {mtl, "the output's material file"},
+                                                   {a.glb, "--glb"}, {a.report, "--report"}});
+    const double moved = check_features_on_mesh(features, mesh, a.mesh, a.snap);
+    if (!a.quiet) {
+        print_map_header(a, features.features.size(), run, std::cout);
+        if (moved > 0)
+            std::cout << "  note: 3D point features lie up to " << moved << " off the surface of " << a.mesh
+                      << "; each is placed at the closest point of the surface (at most "
+                      << snap_tolerance(mesh, a.snap) << " is accepted; --snap DIST)" << std::endl;
+    }
     const double read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 
     MapOptions options;
     if (a.spacing > 0) options.cut.spacing_factor = a.spacing;
     options.refine = a.refine;
-    Progress progress(!a.quiet && isatty(fileno(stderr)));
+    Progress progress(!a.quiet, isatty(fileno(stderr)));
     options.progress = [&](const std::string& stage, int done, int total) { progress(stage, done, total); };
     run.result = map_texture(mesh, map_features(features, run.width, run.height), options, a.features);
     progress.clear();
@@ -87,7 +137,7 @@ MapRun run_map(const MapArgs& a) {
     OutputSet outputs;
     const TexturedMesh tm = run.result.textured();
     write_obj(tm, a.output, run.image, outputs);
-    run.written = {a.output, (fs::path(a.output).parent_path() / (fs::path(a.output).stem().string() + ".mtl")).string()};
+    run.written = {a.output, mtl};
     if (!a.glb.empty()) {
         write_glb(tm, a.glb, run.image, outputs);
         run.written.push_back(a.glb);
@@ -107,9 +157,7 @@ void print_map_summary(const MapArgs& a, const MapRun& run, std::ostream& os) {
     const Certificate& c = r.certificate;
     const Distortion &d0 = r.before_refine, &d1 = c.distortion;
     const MapTimings& t = r.timings_ms;
-    os << "ctmap map: " << a.mesh << " with " << r.feature_uv.size() << " features on "
-       << (run.image.empty() ? std::string("a") : run.image) << " (" << run.width << " x " << run.height << ")\n"
-       << "  " << r.triangulation.triangles.size() << " patches, " << r.cut_stats.paths << " paths, "
+    os << "  " << r.triangulation.triangles.size() << " patches, " << r.cut_stats.paths << " paths, "
        << r.cut.mesh.num_vertices() - r.cut.num_input_vertices + r.point_features << " vertices inserted ("
        << r.cut_stats.steiner_vertices << " by the fallback), " << r.cut.mesh.num_faces() << " faces\n"
        << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate
@@ -135,7 +183,7 @@ Command add_map_command(CLI::App& app) {
     auto* sub = app.add_subcommand(
         "map", "Map a disc mesh onto an image with every feature exact and no flipped triangle (OBJ + MTL, GLB, report)");
     sub->add_option("MESH", args->mesh, "mesh file (OFF, OBJ, PLY, STL), a topological disc")->required();
-    sub->add_option("FEATURES", args->features, "features.json (DESIGN §4): the same features on the mesh and the image")
+    sub->add_option("FEATURES", args->features, "features.json: the same features on the mesh and the image (README, features.json)")
         ->required();
     sub->add_option("-o,--output", args->output, "the map as OBJ; its MTL is written beside it")->required();
     sub->add_option("--image", args->image,
@@ -147,7 +195,11 @@ Command add_map_command(CLI::App& app) {
         ->check(CLI::Range(0.01, 10.0));
     sub->add_flag("--no-refine", [args](std::int64_t) { args->refine = false; },
                   "skip the relaxation (paper §2.4): the bare mean value embedding");
-    sub->add_flag("-q,--quiet", args->quiet, "print nothing on success");
+    sub->add_option("--snap", args->snap,
+                    "how far a 3D \"point\" feature may lie off the surface, in the mesh's units (default 1e-4 of "
+                    "the bounding-box diagonal); it is placed at the closest point of the surface")
+        ->check(CLI::NonNegativeNumber);
+    sub->add_flag("-q,--quiet", args->quiet, "print nothing on success (no header, progress or summary)");
     return {sub, [args] {
                 const MapRun run = run_map(*args);
                 if (!args->quiet) print_map_summary(*args, run, std::cout);

@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/atomic_file.h"
+#include "ctmap/io/output_paths.h"
 #include "ctmap/render/render_inputs.h"
 #include "ctmap/render/render_map.h"
 
@@ -26,6 +27,7 @@ struct RenderArgs {
     std::string background = "white";
     bool flat = false;
     bool whole_image = false;
+    bool quiet = false;
 };
 
 /// "W" (square for the 3D modes, the image's aspect for the image-plane ones) or "WxH".
@@ -71,13 +73,15 @@ int run_render(const RenderArgs& a) {
     parse_size(a.size, w, h);
     opt.background = parse_background(a.background);
     opt.shading = !a.flat;
-    { AtomicFile check(a.output); }  // the output's folder exists and it is not a folder: fail before drawing
     if (a.output.size() < 4 || [&] {
             std::string e = a.output.substr(a.output.size() - 4);
             for (char& c : e) c = char(std::tolower((unsigned char)c));
             return e != ".png";
         }())
         throw BadInput(a.output, "the picture is written as PNG: name it *.png");
+    // Before drawing: the picture overwrites no input, and its folder takes a new file.
+    check_outputs({{a.files.map, "the map"}, {a.files.features, "the features file"}, {a.files.image, "the image"}},
+                  {{a.output, "the picture (-o)"}});
 
     const RenderInputs in = read_render_inputs(a.files, {opt.mode});
     opt.width = w;
@@ -93,7 +97,8 @@ int run_render(const RenderArgs& a) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     char took[32];
     std::snprintf(took, sizeof took, "%.0f ms", ms);
-    std::cout << "wrote " << a.output << " (" << opt.width << " x " << opt.height << ", " << to_string(opt.mode)
+    if (!a.quiet)
+        std::cout << "wrote " << a.output << " (" << opt.width << " x " << opt.height << ", " << to_string(opt.mode)
               << (is_3d(opt.mode) ? ", " + to_string(opt.view) + " view" : std::string()) << ", "
               << in.mesh.mesh.num_faces() << " triangles"
               << (in.feature_vertex.empty() ? "" : ", " + std::to_string(in.feature_vertex.size()) + " features")
@@ -108,7 +113,7 @@ Command add_render_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand(
         "render", "Draw a texture map as a PNG: textured, checker (distortion), uv (layout over the image), "
                   "paths (the cut on the mesh) or triangulation (features over the image)");
-    sub->add_option("MAP", args->files.map, "textured OBJ (from `ctmap map`, or any OBJ with UVs)")->required();
+    sub->add_option("MAP", args->files.map, "textured OBJ or GLB (from `ctmap map`, or any OBJ with UVs)")->required();
     sub->add_option("-o,--output", args->output, "PNG file to write")->required();
     sub->add_option("--mode", args->mode, "textured | checker | uv | paths | triangulation")
         ->check(CLI::IsMember({"textured", "checker", "uv", "paths", "triangulation"}))
@@ -121,10 +126,11 @@ Command add_render_command(CLI::App& app) {
         ->capture_default_str();
     sub->add_option("--background", args->background, "white | black | transparent | #rrggbb | #rrggbbaa")
         ->capture_default_str();
-    sub->add_option("--features", args->files.features, "features.json: markers, and the triangulation (DESIGN §4)");
+    sub->add_option("--features", args->files.features, "features.json: markers, and the triangulation (README, features.json)");
     sub->add_option("--image", args->files.image, "texture image; overrides the material's map_Kd");
     sub->add_flag("--flat", args->flat, "no shading: the texture's own colours");
     sub->add_flag("--whole-image", args->whole_image, "uv, triangulation: the whole image, not just around the map");
+    sub->add_flag("-q,--quiet", args->quiet, "print nothing on success");
     return {sub, [args] { return run_render(*args); }};
 }
 

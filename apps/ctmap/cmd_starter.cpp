@@ -9,6 +9,7 @@
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/io/image.h"
 #include "ctmap/io/mesh_topology.h"
+#include "ctmap/io/output_paths.h"
 #include "ctmap/io/read_mesh.h"
 
 namespace ctmap::cli {
@@ -28,6 +29,7 @@ Command add_starter_command(CLI::App& app) {
     sub->add_option("--border", a->options.border, "features on the mesh border")->capture_default_str()->check(CLI::Range(3, 1000));
     sub->add_option("--interior", a->options.interior, "interior features")->capture_default_str()->check(CLI::Range(0, 100000));
     return {sub, [a] {
+                check_outputs({{a->mesh, "the mesh"}, {a->image, "the image"}}, {{a->output, "the features file (-o)"}});
                 const TriMesh mesh = read_mesh(a->mesh);
                 require_disc(compute_topology(mesh), a->mesh);
                 const Image img = read_image(a->image);

@@ -24,6 +24,7 @@ Command add_render_command(CLI::App& app);  // cmd_render.cpp
 struct MapArgs {
     std::string mesh, features, output, image, glb, report;
     double spacing = 0;  ///< 0: the cut's default
+    double snap = -1;    ///< --snap: how far a point feature may be off the surface (< 0: the default)
     bool refine = true;
     bool quiet = false;
 };

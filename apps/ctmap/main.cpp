@@ -2,6 +2,7 @@
 // capability is a library function (DESIGN §2).
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -16,8 +17,10 @@
 #include "ctmap/io/image.h"
 #include "ctmap/io/mesh_topology.h"
 #include "ctmap/io/obj_io.h"
+#include "ctmap/io/output_paths.h"
 #include "ctmap/io/read_mesh.h"
 #include "commands.h"
+#include "ctmap/map_texture.h"
 #include "ctmap/render/gallery.h"
 
 namespace {
@@ -29,6 +32,22 @@ std::string lower_ext(const std::string& p) {
     std::string e = fs::path(p).extension().string();
     for (char& c : e) c = char(std::tolower((unsigned char)c));
     return e;
+}
+
+/// Levenshtein distance, for "did you mean" on a mistyped command.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diag = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+            diag = up;
+        }
+    }
+    return row[b.size()];
 }
 
 int cmd_info(const std::string& mesh_path, bool as_json) {
@@ -53,29 +72,40 @@ int cmd_info(const std::string& mesh_path, bool as_json) {
     return kExitOk;
 }
 
-int cmd_validate(const std::string& mesh_path, const std::string& features_path, const std::string& image_arg) {
+/// `ctmap validate`: every check `ctmap map` makes before the cut, with the same verdict and
+/// message (issue 17): the files, the topology, the features on the mesh and in the image, and
+/// the feature layout (border features in the border's order, a simple border polygon holding
+/// every interior feature).
+int cmd_validate(const std::string& mesh_path, const std::string& features_path, const std::string& image_arg,
+                 double snap) {
     const TriMesh mesh = read_mesh(mesh_path);
     const MeshTopology t = compute_topology(mesh);
     require_disc(t, mesh_path);
     FeatureSet fs = read_features(features_path);
     int w = 0, h = 0;
     const std::string image = resolve_feature_image(fs, image_arg, w, h);
-    check_features_on_mesh(fs, mesh, mesh_path);
+    const double moved = check_features_on_mesh(fs, mesh, mesh_path, snap);
+    const FeatureTriangulation tri = check_feature_layout(mesh, map_features(fs, w, h), features_path);
     std::cout << "ok: " << mesh_path << " is a disc (" << t.vertices << " vertices, " << t.faces << " faces); "
               << fs.features.size() << " features in " << features_path << " on a " << w << " x " << h << " image"
-              << (image.empty() ? "" : " (" + image + ")") << "\n";
+              << (image.empty() ? "" : " (" + image + ")") << "; " << tri.triangles.size() << " patches\n";
+    if (moved > 0)
+        std::cout << "  note: 3D point features lie up to " << moved << " off the surface; `ctmap map` places each "
+                  << "at the closest point of the surface\n";
     return kExitOk;
 }
 
 int cmd_convert(const std::string& mesh_path, const std::string& out_path) {
+    const std::string ext = lower_ext(out_path);
+    if (ext != ".obj" && ext != ".glb") throw BadInput(out_path, "unknown output format '" + ext + "' (use .obj or .glb)");
+    const std::string mtl = ext == ".obj" ? (fs::path(out_path).parent_path() / (fs::path(out_path).stem().string() + ".mtl")).string() : "";
+    check_outputs({{mesh_path, "the mesh"}}, {{out_path, "the output (-o)"}, {mtl, "the output's material file"}});
     const TriMesh mesh = read_mesh(mesh_path);
     TexturedMesh tm;
     tm.mesh = mesh;
     tm.chart.assign(mesh.faces.size(), 0);
-    const std::string ext = lower_ext(out_path);
     if (ext == ".obj") write_obj(tm, out_path);
-    else if (ext == ".glb") write_glb(tm, out_path);
-    else throw BadInput(out_path, "unknown output format '" + ext + "' (use .obj or .glb)");
+    else write_glb(tm, out_path);
     std::cout << "wrote " << out_path << " (" << mesh.num_vertices() << " vertices, " << mesh.num_faces()
               << " faces)\n";
     return kExitOk;
@@ -85,30 +115,21 @@ int cmd_convert(const std::string& mesh_path, const std::string& out_path) {
 /// be checked too (issue 4). Feature UVs follow `image_to_uv` on the resolved pixels, the rule
 /// `ctmap map` writes with, so "exact" is bitwise. Exit 0 valid, 1 invalid.
 int cmd_check(const std::string& obj_path, const std::string& features_path, const std::string& image_arg,
-              bool as_json) {
-    const TexturedMesh tm = read_textured_obj(obj_path);
+              bool as_json, double snap) {
+    const TexturedMesh tm = lower_ext(obj_path) == ".glb" ? read_glb(obj_path) : read_textured_obj(obj_path);
     if (tm.uvs.empty() || tm.uv_faces.size() != tm.mesh.faces.size())
         throw BadInput(obj_path, "no texture coordinates (`vt` and `f v/vt`): there is no map to check");
     FeatureSet fs = read_features(features_path);
     int w = 0, h = 0;
     resolve_feature_image(fs, image_arg, w, h);
-    check_features_on_mesh(fs, tm.mesh, obj_path);
-    Eigen::AlignedBox3d box;
-    for (const Vec3& p : tm.mesh.positions) box.extend(p);
-    std::vector<int> fv;
+    check_features_on_mesh(fs, tm.mesh, obj_path, snap);
+    const std::vector<int> fv = feature_vertices_on_map(fs, tm.mesh, obj_path, snap);
     std::vector<Vec2> fuv;
     for (const Feature& f : fs.features) {
-        int v = f.vertex;
-        if (v < 0) {  // a 3D point: `ctmap map` snapped it to a vertex or inserted one there
-            double best = std::numeric_limits<double>::infinity();
-            for (int u = 0; u < tm.mesh.num_vertices(); ++u)
-                if (const double d = (tm.mesh.positions[u] - *f.point).norm(); d < best) best = d, v = u;
-            if (!(best <= 1e-6 * box.diagonal().norm()))
-                throw BadInput(features_path, "feature \"" + f.name + "\" is a 3D point with no vertex of " +
-                                                  obj_path + " at it: was this OBJ made from these features?");
-        }
-        fv.push_back(v);
-        fuv.push_back(image_to_uv(f.image, w, h));
+        Vec2 uv = image_to_uv(f.image, w, h);
+        if (lower_ext(obj_path) == ".glb")  // glTF holds float UVs with v flipped: the rule write_glb writes with
+            uv = Vec2(double(float(uv.x())), 1.0 - double(float(1.0 - uv.y())));
+        fuv.push_back(uv);
     }
     const Certificate c = certify(tm, fv, fuv);
     if (as_json) {
@@ -182,6 +203,10 @@ int run(int argc, char** argv) {
 
     std::string mesh_path, features_path, image_arg, out_path;
     bool as_json = false;
+    double snap = -1;
+    const char* const snap_help =
+        "how far a 3D \"point\" feature may lie off the surface, in the mesh's units (default 1e-4 of the "
+        "bounding-box diagonal)";
 
     auto* info = app.add_subcommand("info", "Print the topology of a mesh (OFF, OBJ, PLY, STL)");
     info->add_option("MESH", mesh_path, "mesh file")->required();
@@ -189,16 +214,18 @@ int run(int argc, char** argv) {
 
     auto* validate = app.add_subcommand("validate", "Check a mesh, a features file and an image before mapping");
     validate->add_option("MESH", mesh_path, "mesh file (a topological disc)")->required();
-    validate->add_option("FEATURES", features_path, "features.json (DESIGN §4)")->required();
+    validate->add_option("FEATURES", features_path, "features.json: the same features on the mesh and the image (README)")->required();
     validate->add_option("--image", image_arg, "texture image (PNG/JPEG); overrides the features file's \"image\"");
+    validate->add_option("--snap", snap, snap_help)->check(CLI::NonNegativeNumber);
 
     auto* convert = app.add_subcommand("convert", "Convert a mesh to OBJ or binary glTF (.glb)");
     convert->add_option("MESH", mesh_path, "input mesh file")->required();
     convert->add_option("-o,--output", out_path, "output file, .obj or .glb")->required();
 
-    auto* check = app.add_subcommand("check", "Certify a texture map (OBJ with UVs): exit 0 valid, 1 invalid");
-    check->add_option("OBJ", mesh_path, "textured OBJ (`vt` and `f v/vt`)")->required();
-    check->add_option("--features", features_path, "features.json (DESIGN §4)")->required();
+    auto* check = app.add_subcommand("check", "Certify a texture map (OBJ or GLB with UVs): exit 0 valid, 1 invalid");
+    check->add_option("MAP", mesh_path, "textured OBJ (`vt` and `f v/vt`) or binary glTF (.glb) with TEXCOORD_0")->required();
+    check->add_option("--features", features_path, "features.json: the features the map must hold (README)")->required();
+    check->add_option("--snap", snap, snap_help)->check(CLI::NonNegativeNumber);
     check->add_option("--image", image_arg, "texture image (PNG/JPEG); overrides the features file's \"image\"");
     check->add_flag("--json", as_json, "print the certificate as JSON");
 
@@ -213,6 +240,23 @@ int run(int argc, char** argv) {
         cli::add_starter_command(app),
     };
 
+    if (argc >= 2 && argv[1][0] != '-') {  // a mistyped command: say which one was meant
+        const std::string given = argv[1];
+        std::vector<std::string> names;
+        for (const CLI::App* s : app.get_subcommands([](CLI::App*) { return true; })) names.push_back(s->get_name());
+        if (std::find(names.begin(), names.end(), given) == names.end()) {
+            std::string best;
+            std::size_t best_d = 3;  // suggest only names within two edits
+            for (const std::string& n : names)
+                if (const std::size_t d = edit_distance(given, n); d < best_d) best_d = d, best = n;
+            std::string list;
+            for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+            std::cerr << "ctmap: error: unknown command '" << given << "'"
+                      << (best.empty() ? std::string() : "; did you mean '" + best + "'?") << " (commands: " << list
+                      << "; ctmap --help)\n";
+            return kExitBadInput;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -220,9 +264,9 @@ int run(int argc, char** argv) {
         return code == 0 ? kExitOk : kExitBadInput;
     }
     if (*info) return cmd_info(mesh_path, as_json);
-    if (*validate) return cmd_validate(mesh_path, features_path, image_arg);
+    if (*validate) return cmd_validate(mesh_path, features_path, image_arg, snap);
     if (*convert) return cmd_convert(mesh_path, out_path);
-    if (*check) return cmd_check(mesh_path, features_path, image_arg, as_json);
+    if (*check) return cmd_check(mesh_path, features_path, image_arg, as_json, snap);
     if (*demo) return cmd_demo(demo_out);
     for (const cli::Command& c : commands)
         if (*c.sub) return c.run();

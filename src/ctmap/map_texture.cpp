@@ -1,6 +1,7 @@
 #include "ctmap/map_texture.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <limits>
 #include <memory>
@@ -51,7 +52,7 @@ Vec3 closest_bary(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 /// Inserts the point features of `features` into `mesh` as vertices (appended, so the input's
-/// vertices keep their indices) and returns every feature's vertex. A point within 1e-9 of the
+/// vertices keep their indices) and returns every feature's vertex. A point within 1e-6 of the
 /// bounding-box diagonal of a vertex uses that vertex; one as close to an edge splits the edge
 /// (no sliver faces).
 std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& features, int& inserted) {
@@ -62,7 +63,9 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
         lo = lo.cwiseMin(p);
         hi = hi.cwiseMax(p);
     }
-    const double snap = 1e-9 * (hi - lo).norm();
+    // 1e-6 of the diagonal: a point copied from a float32 file (PLY, STL) or printed with 7
+    // digits lands this close to its vertex, and a vertex inserted there would make slivers.
+    const double snap = 1e-6 * (hi - lo).norm();
     std::unique_ptr<WorkMesh> wm;
     for (std::size_t i = 0; i < features.size(); ++i) {
         if (features[i].vertex >= 0) {
@@ -108,7 +111,79 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
     return vertex;
 }
 
+/// The similarity that takes a mesh into the unit box [-1, 1]^3 (its largest side): the pipeline
+/// works there, so a map does not depend on the unit the mesh was saved in (1e-300 or 1e300), and
+/// every length and area the predicates and solvers see is of order 1.
+struct UnitBox {
+    Vec3 center = Vec3::Zero();
+    double half = 1;  ///< half the largest side of the bounding box
+
+    /// \throw BadInput if every vertex is at one point.
+    static UnitBox of(const TriMesh& mesh, const std::string& features_file) {
+        Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max()), hi = -lo;
+        for (const Vec3& p : mesh.positions) {
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
+        }
+        UnitBox b;
+        b.center = 0.5 * lo + 0.5 * hi;  // halves first: no overflow near the largest doubles
+        b.half = (0.5 * hi - 0.5 * lo).maxCoeff();
+        if (!(b.half > 0) || !std::isfinite(b.half))
+            throw BadInput(features_file, "the mesh has no extent: all its vertices are at one point");
+        return b;
+    }
+    Vec3 in(const Vec3& p) const { return (p - center) / half; }
+    Vec3 out(const Vec3& q) const { return q * half + center; }
+};
+
+/// The mesh in the unit box with the point features inserted: what every stage after reading
+/// starts from (map_texture and check_feature_layout alike).
+struct Prepared {
+    UnitBox box;
+    TriMesh mesh;
+    std::vector<int> feature_vertex;
+    std::vector<std::string> names;
+    std::vector<Vec2> uv;
+    int point_features = 0;
+};
+
+Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, const std::string& features_file) {
+    Prepared p;
+    // The pipeline runs in the unit box (UnitBox); map_texture puts the input's coordinates back.
+    p.box = UnitBox::of(input, features_file);
+    p.mesh = input;
+    for (Vec3& q : p.mesh.positions) q = p.box.in(q);
+    std::vector<MapFeature> unit_features = features;
+    for (MapFeature& f : unit_features)
+        if (f.vertex < 0) f.point = p.box.in(f.point);
+    for (const MapFeature& f : features)
+        if (f.vertex >= input.num_vertices())
+            throw BadInput(features_file, "feature \"" + f.name + "\": vertex " + std::to_string(f.vertex) +
+                                              " does not exist (the mesh has " + std::to_string(input.num_vertices()) +
+                                              " vertices)");
+    p.feature_vertex = feature_vertices(p.mesh, unit_features, p.point_features);
+    const std::vector<int>& fv = p.feature_vertex;
+    for (std::size_t i = 0; i < fv.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (fv[i] == fv[j])
+                throw BadInput(features_file, "features \"" + features[j].name + "\" and \"" + features[i].name +
+                                                  "\" are at the same mesh vertex " + std::to_string(fv[i]));
+    for (const MapFeature& f : features) {
+        p.names.push_back(f.name);
+        p.uv.push_back(f.uv);
+    }
+    return p;
+}
+
 }  // namespace
+
+FeatureTriangulation check_feature_layout(const TriMesh& input, const std::vector<MapFeature>& features,
+                                          const std::string& features_file) {
+    const Prepared in = prepare(input, features, features_file);
+    TriangulateOptions topt;
+    topt.features_file = features_file;
+    return triangulate_features(in.uv, border_features(in.mesh, in.feature_vertex), in.names, topt);
+}
 
 std::vector<MapFeature> map_features(const FeatureSet& fs, int width, int height) {
     std::vector<MapFeature> out;
@@ -131,29 +206,18 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
         if (options.progress) options.progress(name, 0, 0);
     };
     MapResult r;
-    TriMesh mesh = input;
-    for (const MapFeature& f : features)
-        if (f.vertex >= input.num_vertices())
-            throw BadInput(features_file, "feature \"" + f.name + "\": vertex " + std::to_string(f.vertex) +
-                                              " does not exist (the mesh has " + std::to_string(input.num_vertices()) +
-                                              " vertices)");
-    const std::vector<int> fv = feature_vertices(mesh, features, r.point_features);
-    for (std::size_t i = 0; i < fv.size(); ++i)
-        for (std::size_t j = 0; j < i; ++j)
-            if (fv[i] == fv[j])
-                throw BadInput(features_file, "features \"" + features[j].name + "\" and \"" + features[i].name +
-                                                  "\" are at the same mesh vertex " + std::to_string(fv[i]));
-    std::vector<std::string> names;
-    for (const MapFeature& f : features) {
-        names.push_back(f.name);
-        r.feature_uv.push_back(f.uv);
-    }
+    Prepared in = prepare(input, features, features_file);
+    TriMesh& mesh = in.mesh;
+    const std::vector<int>& fv = in.feature_vertex;
+    const UnitBox& box = in.box;
+    r.point_features = in.point_features;
+    r.feature_uv = in.uv;
 
     stage("triangulate");
     auto t0 = Clock::now();
     TriangulateOptions topt;
     topt.features_file = features_file;
-    r.triangulation = triangulate_features(r.feature_uv, border_features(mesh, fv), names, topt);
+    r.triangulation = triangulate_features(r.feature_uv, border_features(mesh, fv), in.names, topt);
     r.timings_ms.triangulate = ms_since(t0);
 
     stage("paths");
@@ -183,6 +247,10 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
     r.certificate = certify(r.textured(), r.cut.feature_vertex, r.feature_uv);
     r.timings_ms.certify = ms_since(t0);
     if (!options.refine) r.before_refine = r.certificate.distortion;
+    // Back to the input's coordinates: its own vertices exactly, the inserted ones through the box.
+    std::vector<Vec3>& out = r.cut.mesh.positions;
+    for (std::size_t v = 0; v < out.size(); ++v)
+        out[v] = v < input.positions.size() ? input.positions[v] : box.out(out[v]);
     r.timings_ms.total = ms_since(start);
     if (!r.certificate.valid)
         throw InternalError("the map failed its certificate (" + std::to_string(r.certificate.flipped) + " flipped, " +

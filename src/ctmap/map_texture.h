@@ -81,6 +81,14 @@ struct MapResult {
 MapResult map_texture(const TriMesh& mesh, const std::vector<MapFeature>& features, const MapOptions& options = {},
                       const std::string& features_file = "");
 
+/// Every check `map_texture` makes before the cut (paper §2.2): vertex indices, point features on
+/// distinct vertices, at least 3 border features in the mesh border's cyclic order, a simple
+/// border polygon that holds every interior feature, distinct feature points. `ctmap validate`
+/// runs it, so it gives the verdict and the message `ctmap map` would.
+/// \pre as map_texture. \return the feature triangulation. \throw BadInput as map_texture.
+FeatureTriangulation check_feature_layout(const TriMesh& mesh, const std::vector<MapFeature>& features,
+                                          const std::string& features_file = "");
+
 /// The features of a features file for `map_texture`. \pre `resolve_units(fs, width, height)`
 /// was called (image points in pixels).
 std::vector<MapFeature> map_features(const FeatureSet& fs, int width, int height);

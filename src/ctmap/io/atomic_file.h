@@ -11,7 +11,8 @@ namespace ctmap {
 /// temporary; `commit()` renames it onto the target.
 class AtomicFile {
 public:
-    /// Chooses the temporary `.<name>.tmp<pid>_<n>` beside `target` (nothing is created yet).
+    /// Chooses the temporary `.<name>.tmp<pid>_<n>` beside `target` (nothing is created yet), and
+    /// removes the temporaries of `target` left by runs that were killed (their process is gone).
     /// \throw BadInput if `target` names no file, is a folder, or its folder does not exist.
     explicit AtomicFile(std::string target);
     ~AtomicFile();

@@ -1,6 +1,7 @@
 #include "ctmap/io/features.h"
 
 #include "ctmap/io/image.h"
+#include "ctmap/io/input_file.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -51,6 +53,40 @@ bool all_finite(const double* v, std::size_t n) {
     return true;
 }
 
+/// Arrays and objects nest at most this deep in a features file (DESIGN §4 needs 4).
+constexpr int kMaxNesting = 64;
+
+/// Refuses documents nested deeper than kMaxNesting, counted outside strings, before the JSON
+/// parser (which recurses once per level, and overflows the stack past ~10,000) sees them.
+void check_nesting(const std::string& text, const std::string& path) {
+    int depth = 0;
+    bool in_string = false;
+    std::size_t line = 1;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '\n') ++line;
+        if (in_string) {
+            if (c == '\\') ++i;
+            else if (c == '"') in_string = false;
+            continue;
+        }
+        if (c == '"') in_string = true;
+        else if (c == '[' || c == '{') {
+            if (++depth > kMaxNesting)
+                throw BadInput(path, "line " + std::to_string(line) + ": arrays and objects nested more than " +
+                                         std::to_string(kMaxNesting) + " deep: not a features file");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+std::string short_number(double x) {
+    std::ostringstream os;
+    os << std::setprecision(3) << x;
+    return os.str();
+}
+
 std::string fmt(const Vec2& p) {
     std::ostringstream os;
     os << "(" << p.x() << ", " << p.y() << ")";
@@ -60,12 +96,8 @@ std::string fmt(const Vec2& p) {
 }  // namespace
 
 FeatureSet read_features(const std::string& path) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw BadInput(path, "no such features file");
-    if (fs::is_directory(path, ec)) throw BadInput(path, "is a directory, not a features file");
+    check_input_file(path, "features file");
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw BadInput(path, "cannot be opened for reading");
     std::stringstream ss;
     ss << in.rdbuf();
     return parse_features(ss.str(), path);
@@ -73,6 +105,7 @@ FeatureSet read_features(const std::string& path) {
 
 FeatureSet parse_features(const std::string& text, const std::string& path) {
     if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw BadInput(path, "the features file is empty");
+    check_nesting(text, path);  // before the parser recurses into it
     json doc;
     try {
         doc = json::parse(text);
@@ -205,12 +238,19 @@ void resolve_units(FeatureSet& fs, int width, int height) {
     problems.throw_if_any(fs.path, "features outside the image:");
 }
 
-void check_features_on_mesh(const FeatureSet& fs, const TriMesh& mesh, const std::string& mesh_file) {
-    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-    Problems problems;
+double snap_tolerance(const TriMesh& mesh, double max_distance) {
+    if (max_distance >= 0) return max_distance;
     Eigen::AlignedBox3d box;
     for (const Vec3& p : mesh.positions) box.extend(p);
-    const double tol = 1e-6 * box.diagonal().norm();
+    return kDefaultSnapFraction * box.diagonal().norm();
+}
+
+double check_features_on_mesh(const FeatureSet& fs, const TriMesh& mesh, const std::string& mesh_file,
+                              double max_distance) {
+    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+    Problems problems;
+    const double tol = snap_tolerance(mesh, max_distance);
+    double moved = 0;
     for (const Feature& f : fs.features) {
         if (f.vertex >= mesh.num_vertices())
             problems.add("feature " + named(f.name) + " uses vertex " + std::to_string(f.vertex) + ", but " +
@@ -225,10 +265,34 @@ void check_features_on_mesh(const FeatureSet& fs, const TriMesh& mesh, const std
             best = std::min(best, CGAL::to_double(CGAL::squared_distance(q, tri)));
         }
         if (!(std::sqrt(best) <= tol))
-            problems.add("feature " + named(f.name) + ": its 3D point is " + std::to_string(std::sqrt(best)) +
-                         " away from the surface of " + mesh_file + " (tolerance " + std::to_string(tol) + ")");
+            problems.add("feature " + named(f.name) + ": its 3D point is " + short_number(std::sqrt(best)) +
+                         " away from the surface of " + mesh_file + " (at most " + short_number(tol) +
+                         " is accepted; --snap DIST sets the distance)");
+        else
+            moved = std::max(moved, std::sqrt(best));
     }
     problems.throw_if_any(fs.path, "the features do not match the mesh:");
+    return moved;
+}
+
+std::vector<int> feature_vertices_on_map(const FeatureSet& fs, const TriMesh& mesh, const std::string& map_file,
+                                         double max_distance) {
+    const double tolerance = snap_tolerance(mesh, max_distance);
+    std::vector<int> out;
+    for (const Feature& f : fs.features) {
+        int v = f.vertex;
+        if (v < 0) {  // a 3D point: `ctmap map` put it on a vertex near it, or inserted one at it
+            double best = std::numeric_limits<double>::infinity();
+            for (int u = 0; u < mesh.num_vertices(); ++u)
+                if (const double d = (mesh.positions[u] - *f.point).norm(); d < best) best = d, v = u;
+            if (!(best <= tolerance))
+                throw BadInput(fs.path, "feature " + named(f.name) + " is a 3D point with no vertex of " + map_file +
+                                            " within " + short_number(tolerance) +
+                                            " of it: was this map made from these features?");
+        }
+        out.push_back(v);
+    }
+    return out;
 }
 
 std::string features_to_json(const FeatureSet& fs) {
@@ -250,6 +314,18 @@ std::string features_to_json(const FeatureSet& fs) {
 
 std::string resolve_feature_image(FeatureSet& fs, const std::string& image_arg, int& w, int& h) {
     const std::string image = !image_arg.empty() ? image_arg : fs.image;
+    // Pixels picked on the features file's own image mean nothing on an image of another size.
+    if (!image_arg.empty() && !fs.image.empty() && !fs.image_size && fs.units == "pixels" &&
+        std::filesystem::is_regular_file(fs.image)) {
+        int fw = 0, fh = 0, aw = 0, ah = 0;
+        read_image_size(fs.image, fw, fh);
+        read_image_size(image_arg, aw, ah);
+        if (fw != aw || fh != ah)
+            throw BadInput(fs.path, "its pixel coordinates were picked on " + fs.image + " (" + std::to_string(fw) +
+                                        " x " + std::to_string(fh) + "), but --image " + image_arg + " is " +
+                                        std::to_string(aw) + " x " + std::to_string(ah) +
+                                        ": give an image of the same size, or the points in \"units\": \"uv\"");
+    }
     if (!image.empty()) {
         const Image img = read_image(image);
         w = img.width;

@@ -51,10 +51,26 @@ void resolve_units(FeatureSet& fs, int width, int height);
 ///        points outside the image.
 std::string resolve_feature_image(FeatureSet& fs, const std::string& image_arg, int& width, int& height);
 
+/// How far a 3D point feature may lie off the surface by default, as a fraction of the mesh's
+/// bounding-box diagonal: coordinates printed with 4 decimals are accepted (issue 17).
+constexpr double kDefaultSnapFraction = 1e-4;
+
 /// Checks the features against the mesh: every vertex index exists, every 3D point lies on the
-/// surface (within 1e-6 of the bounding-box diagonal).
-/// \throw BadInput naming the features and the mesh file.
-void check_features_on_mesh(const FeatureSet& fs, const TriMesh& mesh, const std::string& mesh_file);
+/// surface within `max_distance` (in the mesh's units; negative: kDefaultSnapFraction of the
+/// bounding-box diagonal). The map puts each point at the closest point of the surface.
+/// \return the largest distance of a point feature from the surface (0 without point features).
+/// \throw BadInput naming the features, the mesh file and the distance.
+double check_features_on_mesh(const FeatureSet& fs, const TriMesh& mesh, const std::string& mesh_file,
+                              double max_distance = -1);
+
+/// Each feature's vertex on a map written by `ctmap map` (or any mesh holding the features): its
+/// own vertex, or for a 3D point the nearest vertex, which must lie within `snap_tolerance`.
+/// \throw BadInput naming `map_file` if a point has no vertex that close.
+std::vector<int> feature_vertices_on_map(const FeatureSet& fs, const TriMesh& mesh, const std::string& map_file,
+                                         double max_distance = -1);
+
+/// The tolerance `check_features_on_mesh` uses for `max_distance` on `mesh`.
+double snap_tolerance(const TriMesh& mesh, double max_distance = -1);
 
 /// The features as JSON text in the format of DESIGN §4 (pixels).
 std::string features_to_json(const FeatureSet& fs);

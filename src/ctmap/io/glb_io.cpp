@@ -10,6 +10,8 @@
 #include <map>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/image.h"
+#include "ctmap/io/input_file.h"
 
 namespace ctmap {
 namespace {
@@ -131,6 +133,12 @@ void write_glb(const TexturedMesh& tm, const std::string& path, const std::strin
         std::ifstream in(image, std::ios::binary);
         if (!in) throw BadInput(image, "cannot read the texture image");
         std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        // A JPEG turned by its EXIF orientation: the UVs refer to the upright picture, which is
+        // embedded as PNG (viewers do not all honour EXIF inside glTF).
+        if (exif_orientation(std::string(bytes.begin(), bytes.end())) != 1) {
+            const std::string png = encode_png(read_image(image));
+            bytes.assign(png.begin(), png.end());
+        }
         tinygltf::Image img;
         img.mimeType = mime_of(image, bytes);
         img.name = std::filesystem::path(image).stem().string();
@@ -231,6 +239,7 @@ bool has_glb_extension(const std::string& path) {
 }  // namespace
 
 TexturedMesh read_glb(const std::string& path, GlbTexture* texture) {
+    check_input_file(path, "glTF file");
     tinygltf::Model m;
     tinygltf::TinyGLTF gltf;
     std::string err, warn;

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/input_file.h"
+#include "ctmap/io/mesh_precheck.h"
 
 namespace ctmap {
 namespace {
@@ -370,12 +372,19 @@ void check_binary_stl(const std::string& path) {
 }  // namespace
 
 void check_before_reading(const std::string& path, const std::string& ext) {
+    if (ext == ".off" || ext == ".ply") {
+        std::string bytes = slurp(path);
+        bytes.erase(0, utf8_bom_length(bytes));
+        if (ext == ".ply") check_ply_declarations(path, bytes);
+        else check_off_face_sizes(path, bytes);
+    }
     if (ext == ".off") check_off_counts(path);
     if (ext == ".stl") check_binary_stl(path);
 }
 
 std::string diagnose_mesh_file(const std::string& path, const std::string& ext) {
-    const std::string text = slurp(path);
+    std::string text = slurp(path);
+    text.erase(0, utf8_bom_length(text));  // the readers skip it too (read_mesh.cpp)
     if (ext == ".off") return diagnose_off(text);
     if (ext == ".obj") return diagnose_obj(text);
     if (ext == ".ply") return diagnose_ply(text);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/input_file.h"
 
 namespace ctmap {
 namespace {
@@ -123,10 +124,7 @@ int resolve_index(long long i, std::size_t count, const char* what, const LineRe
 }  // namespace
 
 TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw BadInput(path, "no such file");
-    if (fs::is_directory(path, ec)) throw BadInput(path, "is a directory, not an OBJ file");
-    if (fs::file_size(path, ec) == 0) throw BadInput(path, "the file is empty");
+    check_input_file(path, "OBJ file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw BadInput(path, "cannot be opened for reading");
 
@@ -140,6 +138,7 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
     bool all_faces_grouped = true;
     while (std::getline(in, line)) {
         ++r.line_no;
+        if (r.line_no == 1) line.erase(0, utf8_bom_length(line));  // a byte-order mark, as Windows editors write
         if (!line.empty() && line.back() == '\r') line.pop_back();
         const char* p = line.data();
         const char* end = p + line.size();

@@ -1,16 +1,21 @@
 #include "ctmap/io/read_mesh.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/IO/OBJ.h>
+#include <CGAL/IO/OFF.h>
+#include <CGAL/IO/PLY.h>
+#include <CGAL/IO/STL.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <tuple>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/input_file.h"
 #include "ctmap/io/mesh_diagnosis.h"
 
 namespace ctmap {
@@ -63,29 +68,45 @@ void triangulate_polygon(const std::string& path, std::size_t face_index,
 
 /// Checks that `path` is a readable, non-empty file with a mesh extension; returns the extension.
 std::string check_mesh_file(const std::string& path) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw BadInput(path, "no such file");
-    if (fs::is_directory(path, ec)) throw BadInput(path, "is a directory, not a mesh file");
-    if (fs::file_size(path, ec) == 0) throw BadInput(path, "the file is empty");
-    {
-        std::ifstream probe(path, std::ios::binary);
-        if (!probe) throw BadInput(path, "cannot be opened for reading");
-    }
+    check_input_file(path, "mesh file");
     const std::string ext = lower_extension(path);
     if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
         throw BadInput(path, "unknown mesh format '" + ext + "' (use .off, .obj, .ply or .stl)");
     return ext;
 }
 
+/// CGAL's stream readers on the file's bytes, held in memory: a UTF-8 byte-order mark (which
+/// Windows editors write) is skipped, so the first line is not lost; binary modes as CGAL's own
+/// file readers set them.
+bool read_soup_from_bytes(const std::string& bytes, const std::string& ext, std::vector<Point>& points,
+                          std::vector<std::vector<std::size_t>>& polygons) {
+    const std::string text = bytes.substr(utf8_bom_length(bytes));
+    const auto np = CGAL::parameters::verbose(false);
+    std::istringstream is(text, std::ios::in | std::ios::binary);
+    if (ext == ".off") return CGAL::IO::read_OFF(is, points, polygons, np);
+    if (ext == ".obj") return CGAL::IO::read_OBJ(is, points, polygons, np);
+    if (ext == ".ply") {
+        CGAL::IO::set_mode(is, CGAL::IO::BINARY);
+        return CGAL::IO::read_PLY(is, points, polygons, np);
+    }
+    CGAL::IO::set_mode(is, CGAL::IO::BINARY);  // STL: binary first, then ASCII, as CGAL's read_STL
+    if (CGAL::IO::read_STL(is, points, polygons, np)) return true;
+    points.clear();
+    polygons.clear();
+    std::istringstream ascii(text);
+    CGAL::IO::set_mode(ascii, CGAL::IO::ASCII);
+    return CGAL::IO::read_STL(ascii, points, polygons, np);
+}
+
 /// Reads the polygon soup with CGAL; when CGAL fails, says why (mesh_diagnosis.h).
 void read_soup(const std::string& path, const std::string& ext, std::vector<Point>& points,
                std::vector<std::vector<std::size_t>>& polygons) {
     check_before_reading(path, ext);  // what CGAL would trust blindly (mesh_diagnosis.h)
+    const std::string bytes = read_input_file(path, "mesh file");
     const std::string what = "not a valid " + ext.substr(1) + " file: ";
     bool ok = false;
     try {
-        ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+        ok = read_soup_from_bytes(bytes, ext, points, polygons);
     } catch (const std::exception& e) {
         const std::string why = diagnose_mesh_file(path, ext);
         throw BadInput(path, what + (why.empty() ? std::string("the reader failed (") + e.what() + ")" : why));

@@ -8,6 +8,8 @@
 #include "ctmap/certify/certificate.h"
 #include "ctmap/cut/cut_mesh.h"
 #include "ctmap/errors.h"
+#include "ctmap/io/glb_io.h"
+#include "ctmap/io/image.h"
 #include "ctmap/io/mesh_topology.h"
 #include "ctmap/io/obj_io.h"
 
@@ -43,7 +45,10 @@ RenderInputs read_render_inputs(const RenderFiles& files, const std::vector<Rend
     using M = RenderMode;
     RenderInputs in;
     std::string mtl_image;
-    in.mesh = read_textured_obj(files.map, &mtl_image);
+    std::string ext = std::filesystem::path(files.map).extension().string();
+    for (char& c : ext) c = char(std::tolower((unsigned char)c));
+    GlbTexture embedded;
+    in.mesh = ext == ".glb" ? read_glb(files.map, &embedded) : read_textured_obj(files.map, &mtl_image);
     if (in.mesh.mesh.faces.empty()) throw BadInput(files.map, "no faces: nothing to draw");
     const bool has_uv = !in.mesh.uvs.empty() && in.mesh.uv_faces.size() == in.mesh.mesh.faces.size();
     if (!has_uv && any(modes, {M::textured, M::checker, M::uv}))
@@ -57,11 +62,14 @@ RenderInputs read_render_inputs(const RenderFiles& files, const std::vector<Rend
     if (!files.features.empty()) in.features = read_features(files.features);
     const bool needs_image = any(modes, {M::textured, M::uv, M::triangulation});
     std::string image = !files.image.empty() ? files.image : !mtl_image.empty() ? mtl_image : in.features.image;
-    if (needs_image && image.empty())
+    if (needs_image && image.empty() && embedded.bytes.empty())
         throw BadInput(files.map, "no texture image (its material has no `map_Kd`), which " +
                                       mode_names(modes, {M::textured, M::uv, M::triangulation}) +
                                       " needs: give --image");
-    if (!image.empty()) {
+    if (image.empty() && !embedded.bytes.empty() && needs_image) {  // a GLB's own texture
+        in.image = decode_image(std::string(embedded.bytes.begin(), embedded.bytes.end()), files.map);
+        in.image_path = files.map;
+    } else if (!image.empty()) {
         if (needs_image || !files.image.empty() || std::filesystem::exists(image)) {
             // read_image names the file (the material's map_Kd, resolved against its folder) when
             // it is missing or broken.
@@ -79,21 +87,8 @@ RenderInputs read_render_inputs(const RenderFiles& files, const std::vector<Rend
                                             "\"image_size\" in the features file");
         resolve_units(fs, w, h);
         check_features_on_mesh(fs, in.mesh.mesh, files.map);
-        Eigen::AlignedBox3d box;
-        for (const Vec3& p : in.mesh.mesh.positions) box.extend(p);
-        for (const Feature& f : fs.features) {
-            int v = f.vertex;
-            if (v < 0) {
-                double best = std::numeric_limits<double>::infinity();
-                for (int u = 0; u < in.mesh.mesh.num_vertices(); ++u)
-                    if (const double d = (in.mesh.mesh.positions[u] - *f.point).norm(); d < best) best = d, v = u;
-                if (!(best <= 1e-6 * box.diagonal().norm()))
-                    throw BadInput(files.features, "feature \"" + f.name + "\" is a 3D point with no vertex of " +
-                                                       files.map + " at it: was this map made from these features?");
-            }
-            in.feature_vertex.push_back(v);
-            in.feature_uv.push_back(image_to_uv(f.image, w, h));
-        }
+        in.feature_vertex = feature_vertices_on_map(fs, in.mesh.mesh, files.map);
+        for (const Feature& f : fs.features) in.feature_uv.push_back(image_to_uv(f.image, w, h));
     }
 
     if (any(modes, {M::triangulation})) {

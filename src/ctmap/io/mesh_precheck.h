@@ -1,0 +1,23 @@
+#pragma once
+/// \file mesh_precheck.h
+/// Checks on a mesh file's own declarations, made before CGAL's readers see it (issue 17). The
+/// readers allocate what a header or a face claims (an element count, a face's corner count)
+/// before reading it, and CGAL's PLY reader dereferences a null element on a `property` line
+/// that comes before any `element`. Every count is checked here against the file's size.
+#include <string_view>
+
+namespace ctmap {
+
+/// PLY: the header ends (`end_header`), every `property` follows an `element`, every count is a
+/// non-negative integer, and the elements it declares fit in the bytes after the header (at
+/// least 2 characters per value in ASCII, the type's size in binary); in ASCII files every list
+/// count is at most the number of values left; in binary files every list count fits in the file.
+/// \throw BadInput naming `path` and the line or element.
+void check_ply_declarations(const std::string_view path, std::string_view bytes);
+
+/// OFF (text): every face's corner count is at most the number of bytes left in the file; BINARY
+/// OFF: every face's corner count fits in the bytes left.
+/// \throw BadInput naming `path` and the face.
+void check_off_face_sizes(const std::string_view path, std::string_view bytes);
+
+}  // namespace ctmap
