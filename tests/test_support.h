@@ -56,10 +56,11 @@ struct RunResult {
     std::string out;  ///< stdout and stderr together
 };
 
-/// Runs the ctmap program with `args` (already quoted as needed), capturing its output.
-inline RunResult run_ctmap(const std::string& args) {
+/// Runs the ctmap program with `args` (already quoted as needed) after the shell words `prefix`
+/// (e.g. "timeout 60"), capturing its output.
+inline RunResult run_ctmap_with_prefix(const std::string& prefix, const std::string& args) {
     RunResult r;
-    const std::string cmd = std::string("'") + CTMAP_BINARY + "' " + args + " 2>&1";
+    const std::string cmd = prefix + " '" + CTMAP_BINARY + "' " + args + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
     std::array<char, 4096> buf;
@@ -69,6 +70,9 @@ inline RunResult run_ctmap(const std::string& args) {
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     return r;
 }
+
+/// Runs the ctmap program with `args` (already quoted as needed), capturing its output.
+inline RunResult run_ctmap(const std::string& args) { return run_ctmap_with_prefix("", args); }
 
 inline std::string q(const std::string& s) { return "'" + s + "'"; }
 

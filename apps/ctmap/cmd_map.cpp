@@ -113,23 +113,22 @@ MapRun run_map(const MapArgs& a) {
     if (a.image.empty() && !run.image.empty())  // the features file's image: an input too
         check_outputs({{run.image, "the image"}}, {{a.output, "the output (-o)"}, {mtl, "the output's material file"},
                                                    {a.glb, "--glb"}, {a.report, "--report"}});
-    const double moved = check_features_on_mesh(features, mesh, a.mesh, a.snap);
-    if (!a.quiet) {
-        print_map_header(a, features.features.size(), run, std::cout);
-        if (moved > 0)
-            std::cout << "  note: 3D point features lie up to " << moved << " off the surface of " << a.mesh
-                      << "; each is placed at the closest point of the surface (at most "
-                      << snap_tolerance(mesh, a.snap) << " is accepted; --snap DIST)" << std::endl;
-    }
+    check_features_on_mesh(features, mesh, a.mesh, a.snap);
+    if (!a.quiet) print_map_header(a, features.features.size(), run, std::cout);
     const double read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 
     MapOptions options;
     if (a.spacing > 0) options.cut.spacing_factor = a.spacing;
     options.refine = a.refine;
+    options.snap = a.snap;
     Progress progress(!a.quiet, isatty(fileno(stderr)));
     options.progress = [&](const std::string& stage, int done, int total) { progress(stage, done, total); };
     run.result = map_texture(mesh, map_features(features, run.width, run.height), options, a.features);
     progress.clear();
+    if (!a.quiet && run.result.point_features_moved > 0)
+        std::cout << "  note: 3D point features moved onto the mesh by up to " << run.result.point_features_moved
+                  << " (onto a vertex within " << snap_tolerance(mesh, a.snap)
+                  << ", else to the closest point of the surface; --snap DIST)" << std::endl;
     run.result.timings_ms.read = read_ms;
     run.result.timings_ms.total += read_ms;
 

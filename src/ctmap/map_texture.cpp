@@ -52,10 +52,13 @@ Vec3 closest_bary(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 /// Inserts the point features of `features` into `mesh` as vertices (appended, so the input's
-/// vertices keep their indices) and returns every feature's vertex. A point within 1e-6 of the
-/// bounding-box diagonal of a vertex uses that vertex; one as close to an edge splits the edge
-/// (no sliver faces).
-std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& features, int& inserted) {
+/// vertices keep their indices) and returns every feature's vertex. A point within `vertex_snap`
+/// of a vertex of its closest face (and within a quarter of that vertex's shortest edge there,
+/// so distinct points on a dense mesh stay distinct) uses that vertex: coordinates printed with
+/// 4 decimals land on the vertex they were copied from. A point within 1e-6 of the diagonal of an
+/// edge splits the edge (no sliver faces). `moved` receives the largest distance a point moved.
+std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& features, double vertex_snap,
+                                  int& inserted, double& moved) {
     std::vector<int> vertex(features.size(), -1);
     inserted = 0;
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max()), hi = -lo;
@@ -66,6 +69,7 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
     // 1e-6 of the diagonal: a point copied from a float32 file (PLY, STL) or printed with 7
     // digits lands this close to its vertex, and a vertex inserted there would make slivers.
     const double snap = 1e-6 * (hi - lo).norm();
+    moved = 0;
     std::unique_ptr<WorkMesh> wm;
     for (std::size_t i = 0; i < features.size(); ++i) {
         if (features[i].vertex >= 0) {
@@ -86,10 +90,16 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
         }
         const Tri& t = wm->faces[best_face];
         int at_vertex = -1;
-        for (int k = 0; k < 3; ++k)
-            if ((wm->positions[t[k]] - p).norm() <= snap) at_vertex = t[k];
+        double at_distance = std::numeric_limits<double>::max();
+        for (int k = 0; k < 3; ++k) {
+            const Vec3& v = wm->positions[t[k]];
+            const double shortest = std::min((wm->positions[t[(k + 1) % 3]] - v).norm(), (wm->positions[t[(k + 2) % 3]] - v).norm());
+            const double d = (v - p).norm();
+            if (d <= std::max(snap, std::min(vertex_snap, 0.25 * shortest)) && d < at_distance) at_vertex = t[k], at_distance = d;
+        }
         if (at_vertex >= 0) {
             vertex[i] = at_vertex;
+            moved = std::max(moved, at_distance);
             continue;
         }
         for (int k = 0; k < 3; ++k) {
@@ -102,6 +112,7 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
             }
         }
         vertex[i] = insert_point(*wm, best_face, best_bary);
+        moved = std::max(moved, (wm->positions[vertex[i]] - p).norm());
         ++inserted;
     }
     if (wm) {
@@ -109,6 +120,12 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
         mesh.faces = wm->faces;
     }
     return vertex;
+}
+
+double diagonal(const TriMesh& mesh) {
+    Eigen::AlignedBox3d box;
+    for (const Vec3& p : mesh.positions) box.extend(p);
+    return box.diagonal().norm();
 }
 
 /// The similarity that takes a mesh into the unit box [-1, 1]^3 (its largest side): the pipeline
@@ -145,9 +162,11 @@ struct Prepared {
     std::vector<std::string> names;
     std::vector<Vec2> uv;
     int point_features = 0;
+    double moved = 0;  ///< the largest distance a point feature moved onto the mesh (input units)
 };
 
-Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, const std::string& features_file) {
+Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, double snap,
+                 const std::string& features_file) {
     Prepared p;
     // The pipeline runs in the unit box (UnitBox); map_texture puts the input's coordinates back.
     p.box = UnitBox::of(input, features_file);
@@ -161,7 +180,9 @@ Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, 
             throw BadInput(features_file, "feature \"" + f.name + "\": vertex " + std::to_string(f.vertex) +
                                               " does not exist (the mesh has " + std::to_string(input.num_vertices()) +
                                               " vertices)");
-    p.feature_vertex = feature_vertices(p.mesh, unit_features, p.point_features);
+    const double unit_snap = snap >= 0 ? snap / p.box.half : kDefaultSnapFraction * diagonal(p.mesh);
+    p.feature_vertex = feature_vertices(p.mesh, unit_features, unit_snap, p.point_features, p.moved);
+    p.moved *= p.box.half;
     const std::vector<int>& fv = p.feature_vertex;
     for (std::size_t i = 0; i < fv.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
@@ -178,8 +199,8 @@ Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, 
 }  // namespace
 
 FeatureTriangulation check_feature_layout(const TriMesh& input, const std::vector<MapFeature>& features,
-                                          const std::string& features_file) {
-    const Prepared in = prepare(input, features, features_file);
+                                          const std::string& features_file, double snap) {
+    const Prepared in = prepare(input, features, snap, features_file);
     TriangulateOptions topt;
     topt.features_file = features_file;
     return triangulate_features(in.uv, border_features(in.mesh, in.feature_vertex), in.names, topt);
@@ -206,11 +227,12 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
         if (options.progress) options.progress(name, 0, 0);
     };
     MapResult r;
-    Prepared in = prepare(input, features, features_file);
+    Prepared in = prepare(input, features, options.snap, features_file);
     TriMesh& mesh = in.mesh;
     const std::vector<int>& fv = in.feature_vertex;
     const UnitBox& box = in.box;
     r.point_features = in.point_features;
+    r.point_features_moved = in.moved;
     r.feature_uv = in.uv;
 
     stage("triangulate");

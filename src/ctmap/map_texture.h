@@ -24,6 +24,9 @@ struct MapOptions {
     EmbedOptions embed;
     RelaxOptions relax;
     bool refine = true;  ///< run the relaxation (paper §2.4); off gives the bare embedding
+    /// How far a point feature may be moved onto a vertex near it, in the mesh's units (< 0:
+    /// kDefaultSnapFraction of the bounding-box diagonal); `--snap`.
+    double snap = -1;
     /// Called when a stage starts ("triangulate", "paths", "embed", "refine", "certify") and, for
     /// the paths, as they are inserted (done of total); for progress lines.
     std::function<void(const std::string& stage, int done, int total)> progress;
@@ -59,6 +62,7 @@ struct MapResult {
     Certificate certificate;          ///< of the written map (valid, or map_texture throws)
     MapTimings timings_ms;
     int point_features = 0;           ///< features given as 3D points (inserted as vertices)
+    double point_features_moved = 0;  ///< the largest distance a point feature moved onto the mesh
 
     /// The map as a textured mesh with per-vertex UVs (one chart), ready for write_obj/write_glb.
     /// Faces carry their patch (`TexturedMesh::patch`), so the OBJ shows the cut as groups.
@@ -87,7 +91,7 @@ MapResult map_texture(const TriMesh& mesh, const std::vector<MapFeature>& featur
 /// runs it, so it gives the verdict and the message `ctmap map` would.
 /// \pre as map_texture. \return the feature triangulation. \throw BadInput as map_texture.
 FeatureTriangulation check_feature_layout(const TriMesh& mesh, const std::vector<MapFeature>& features,
-                                          const std::string& features_file = "");
+                                          const std::string& features_file = "", double snap = -1);
 
 /// The features of a features file for `map_texture`. \pre `resolve_units(fs, width, height)`
 /// was called (image points in pixels).

@@ -95,7 +95,17 @@ bool segments_intersect_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Ve
 
 Distortion measure_distortion(const TexturedMesh& tm) {
     check_shapes(tm);
-    const TriMesh& m = tm.mesh;
+    // Every measure is scale-invariant: measure in the unit box, so that a mesh saved in units of
+    // 1e300 (or 1e-300) neither overflows nor underflows the areas.
+    TriMesh m = tm.mesh;
+    if (!m.positions.empty()) {
+        Vec3 lo = m.positions[0], hi = lo;
+        for (const Vec3& p : m.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+        const Vec3 center = 0.5 * lo + 0.5 * hi;
+        const double half = (0.5 * hi - 0.5 * lo).maxCoeff();
+        if (half > 0 && std::isfinite(half))
+            for (Vec3& p : m.positions) p = (p - center) / half;
+    }
     Distortion d;
     double area3 = 0, area2 = 0;
     for (int f = 0; f < m.num_faces(); ++f) {

@@ -5,7 +5,6 @@
 #include <CGAL/IO/OFF.h>
 #include <CGAL/IO/PLY.h>
 #include <CGAL/IO/STL.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include "ctmap/errors.h"
 #include "ctmap/io/input_file.h"
 #include "ctmap/io/mesh_diagnosis.h"
+#include "ctmap/io/triangulate_polygon.h"
 
 namespace ctmap {
 namespace {
@@ -28,42 +28,6 @@ std::string lower_extension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     return ext;
-}
-
-/// Newell's normal of a polygon: robust for non-planar and non-convex polygons.
-Vec3 newell_normal(const std::vector<Vec3>& p) {
-    Vec3 n = Vec3::Zero();
-    for (std::size_t i = 0; i < p.size(); ++i) n += p[i].cross(p[(i + 1) % p.size()]);
-    return n;
-}
-
-void triangulate_polygon(const std::string& path, std::size_t face_index,
-                         const std::vector<std::size_t>& poly, const std::vector<Vec3>& positions,
-                         std::vector<Tri>& out) {
-    if (poly.size() == 3) {
-        out.push_back({int(poly[0]), int(poly[1]), int(poly[2])});
-        return;
-    }
-    std::vector<Point> ring;
-    std::vector<Vec3> corners;
-    for (std::size_t v : poly) {
-        const Vec3& q = positions[v];
-        ring.emplace_back(q.x(), q.y(), q.z());
-        corners.push_back(q);
-    }
-    std::vector<std::tuple<int, int, int>> tris;
-    CGAL::Polygon_mesh_processing::triangulate_hole_polyline(ring, std::back_inserter(tris));
-    if (tris.size() != poly.size() - 2)
-        throw BadInput(path, "face " + std::to_string(face_index) + " (a polygon with " +
-                                 std::to_string(poly.size()) + " corners) could not be triangulated");
-    // The hole filler does not promise the polygon's orientation: follow the polygon's normal.
-    const Vec3 n = newell_normal(corners);
-    for (auto [a, b, c] : tris) {
-        Tri t{int(poly[a]), int(poly[b]), int(poly[c])};
-        const Vec3 tn = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
-        if (tn.dot(n) < 0) std::swap(t[1], t[2]);
-        out.push_back(t);
-    }
 }
 
 /// Checks that `path` is a readable, non-empty file with a mesh extension; returns the extension.
