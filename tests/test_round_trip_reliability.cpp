@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "ctmap/errors.h"
@@ -280,6 +282,105 @@ TEST(RoundTripReliability, CheckAndRenderReadTheGlbThatMapWrites) {
     r = run_ctmap("check " + q(d / "m.obj") + " --features " + q(d / "far.json"));
     EXPECT_EQ(r.code, kExitBadInput);
     EXPECT_TRUE(has(r.out, d / "far.json") && has(r.out, d / "m.obj") && has(r.out, "feature 'p'")) << r.out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Outputs as Blender and three.js want them: normals, one group per patch, a movable texture.
+
+/// The lines of `text` starting with `prefix`.
+std::vector<std::string> lines_starting(const std::string& text, const std::string& prefix) {
+    std::vector<std::string> out;
+    std::istringstream is(text);
+    for (std::string l; std::getline(is, l);)
+        if (l.rfind(prefix, 0) == 0) out.push_back(l);
+    return out;
+}
+
+TEST(RoundTripReliability, ObjAndGlbCarryVertexNormalsAndOneGroupPerPatch) {
+    TempDir d;
+    RunResult r = run_ctmap("map " + q(data("meshes/nefertiti.off")) + " " + q(data("features/nefertiti_astronaut.json")) +
+                            " -o " + q(d / "m.obj") + " --glb " + q(d / "m.glb") + " -q");
+    ASSERT_EQ(r.code, 0) << r.out;
+    const std::string obj = read_file(d / "m.obj");
+    // 22 patches: 22 groups, each named once (the faces of a patch together; there were 10,644
+    // switches on a big map).
+    const auto groups = lines_starting(obj, "g ");
+    EXPECT_EQ(groups.size(), 22u);
+    EXPECT_EQ(std::set<std::string>(groups.begin(), groups.end()).size(), groups.size());
+    // One unit normal per vertex, on the side the faces face (a smooth mask: every corner).
+    const TexturedMesh tm = read_textured_obj(d / "m.obj");
+    const auto vn = lines_starting(obj, "vn ");
+    ASSERT_EQ(vn.size(), tm.mesh.positions.size());
+    std::vector<Vec3> normals;
+    for (const std::string& l : vn) {
+        std::istringstream is(l.substr(3));
+        Vec3 n;
+        is >> n.x() >> n.y() >> n.z();
+        EXPECT_NEAR(n.norm(), 1.0, 1e-12);
+        normals.push_back(n);
+    }
+    for (const std::string& f : lines_starting(obj, "f ")) {  // f v/vt/vn with vn = v
+        std::istringstream is(f.substr(2));
+        for (std::string c; is >> c;) {
+            const std::string v = c.substr(0, c.find('/')), n = c.substr(c.rfind('/') + 1);
+            ASSERT_EQ(v, n) << f;
+        }
+    }
+    int facing = 0, corners = 0;
+    for (const Tri& t : tm.mesh.faces) {
+        const Vec3 fn = (tm.mesh.positions[t[1]] - tm.mesh.positions[t[0]]).cross(tm.mesh.positions[t[2]] - tm.mesh.positions[t[0]]);
+        for (int k = 0; k < 3; ++k, ++corners) facing += fn.dot(normals[t[k]]) > 0;
+    }
+    EXPECT_EQ(facing, corners);
+    // The GLB: a NORMAL attribute with one unit vector per glTF vertex.
+    const std::string glb = read_file(d / "m.glb");
+    std::uint32_t json_len = 0;
+    std::memcpy(&json_len, glb.data() + 12, 4);
+    const auto doc = nlohmann::json::parse(glb.substr(20, json_len));
+    const auto& attributes = doc["meshes"][0]["primitives"][0]["attributes"];
+    ASSERT_TRUE(attributes.contains("NORMAL")) << attributes.dump();
+    const auto& acc = doc["accessors"][attributes["NORMAL"].get<int>()];
+    EXPECT_EQ(acc["count"], doc["accessors"][attributes["POSITION"].get<int>()]["count"]);
+    const auto& view = doc["bufferViews"][acc["bufferView"].get<int>()];
+    const std::size_t bin = 20 + json_len + 8, offset = view.value("byteOffset", 0);
+    for (int i = 0; i < acc["count"].get<int>(); ++i) {
+        float n[3];
+        std::memcpy(n, glb.data() + bin + offset + 12 * std::size_t(i), 12);
+        ASSERT_NEAR(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), 1.0, 1e-6) << i;
+    }
+}
+
+TEST(RoundTripReliability, CopyImageMakesTheObjMovableWithItsTexture) {
+    TempDir d;
+    fs::create_directories(d / "photos");
+    fs::create_directories(d / "out");
+    fs::copy_file(data("images/astronaut.png"), d / "photos/astronaut.png");
+    const std::string base = "map " + q(data("meshes/nefertiti.off")) + " " + q(data("features/nefertiti_astronaut.json")) +
+                             " --image " + q(d / "photos/astronaut.png") + " -q";
+    RunResult r = run_ctmap(base + " -o " + q(d / "out/m.obj") + " --copy-image");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(read_file(d / "out/astronaut.png"), read_file(d / "photos/astronaut.png"));
+    EXPECT_TRUE(has(read_file(d / "out/m.mtl"), "map_Kd astronaut.png\n"));
+    // Moved elsewhere, without the photos folder: the material still finds its texture.
+    fs::rename(d / "out", d / "moved");
+    fs::remove_all(d / "photos");
+    r = run_ctmap("render " + q(d / "moved/m.obj") + " -o " + q(d / "moved/m.png") + " --size 64 -q");
+    EXPECT_EQ(r.code, 0) << r.out;
+}
+
+TEST(RoundTripReliability, AnExifTurnedPhotoGivesTheObjAnUprightTexture) {
+    TempDir d;
+    write_file(d / "o6.jpg", quadrant_jpeg(6));
+    write_file(d / "f.json", R"({"features": [{"name": "a", "vertex": 0, "image": [2, 2]},
+        {"name": "b", "vertex": 8, "image": [30, 2]}, {"name": "c", "vertex": 7, "image": [16, 60]}]})");
+    const RunResult r = run_ctmap("map " + q(data("meshes/nefertiti.off")) + " " + q(d / "f.json") + " --image " +
+                                  q(d / "o6.jpg") + " -o " + q(d / "m.obj"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(has(r.out, "EXIF orientation")) << r.out;
+    EXPECT_TRUE(has(read_file(d / "m.mtl"), "map_Kd m_texture.png\n"));
+    const Image upright = read_image(d / "m_texture.png");
+    EXPECT_EQ(upright.width, 32);
+    EXPECT_EQ(quadrants(upright), "brwg");
 }
 
 }  // namespace

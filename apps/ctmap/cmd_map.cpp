@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -14,6 +15,8 @@
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/io/features.h"
 #include "ctmap/io/glb_io.h"
+#include "ctmap/io/image.h"
+#include "ctmap/io/input_file.h"
 #include "ctmap/io/map_report.h"
 #include "ctmap/io/mesh_topology.h"
 #include "ctmap/io/obj_io.h"
@@ -93,6 +96,20 @@ void print_map_header(const MapArgs& a, std::size_t features, const MapRun& run,
 
 }  // namespace
 
+TextureCopy texture_for_obj(const MapArgs& a, const std::string& image) {
+    TextureCopy t;
+    if (image.empty()) return t;
+    const fs::path dir = fs::path(a.output).parent_path();
+    t.upright = exif_orientation(read_input_file(image, "image file")) != 1;
+    if (t.upright) {  // Blender and most OBJ viewers ignore EXIF: the UVs refer to the upright picture
+        t.copy = (dir / (fs::path(a.output).stem().string() + "_texture.png")).string();
+    } else if (a.copy_image) {
+        const std::string beside = (dir / fs::path(image).filename()).string();
+        if (!same_file(beside, image)) t.copy = beside;  // already beside the OBJ: nothing to copy
+    }
+    return t;
+}
+
 MapRun run_map(const MapArgs& a) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
@@ -110,9 +127,11 @@ MapRun run_map(const MapArgs& a) {
     FeatureSet features = read_features(a.features);
     MapRun run;
     run.image = resolve_feature_image(features, a.image, run.width, run.height);
-    if (a.image.empty() && !run.image.empty())  // the features file's image: an input too
-        check_outputs({{run.image, "the image"}}, {{a.output, "the output (-o)"}, {mtl, "the output's material file"},
-                                                   {a.glb, "--glb"}, {a.report, "--report"}});
+    run.texture = texture_for_obj(a, run.image);
+    // The features file's image is an input too, and the texture copy one more output.
+    check_outputs({{a.mesh, "the mesh"}, {a.features, "the features file"}, {run.image, "the image"}},
+                  {{a.output, "the output (-o)"}, {mtl, "the output's material file"}, {a.glb, "--glb"},
+                   {a.report, "--report"}, {run.texture.copy, "the texture copy"}});
     check_features_on_mesh(features, mesh, a.mesh, a.snap);
     if (!a.quiet) print_map_header(a, features.features.size(), run, std::cout);
     const double read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -125,6 +144,9 @@ MapRun run_map(const MapArgs& a) {
     options.progress = [&](const std::string& stage, int done, int total) { progress(stage, done, total); };
     run.result = map_texture(mesh, map_features(features, run.width, run.height), options, a.features);
     progress.clear();
+    if (!a.quiet && run.texture.upright)
+        std::cout << "  note: " << run.image << " is turned by its EXIF orientation; the OBJ's material uses the "
+                  << "upright copy " << run.texture.copy << std::endl;
     if (!a.quiet && run.result.point_features_moved > 0)
         std::cout << "  note: 3D point features moved onto the mesh by up to " << run.result.point_features_moved
                   << " (onto a vertex within " << snap_tolerance(mesh, a.snap)
@@ -135,8 +157,16 @@ MapRun run_map(const MapArgs& a) {
     // Everything is written to temporaries first and renamed together at the end.
     OutputSet outputs;
     const TexturedMesh tm = run.result.textured();
-    write_obj(tm, a.output, run.image, outputs);
+    write_obj(tm, a.output, run.texture.copy.empty() ? run.image : run.texture.copy, outputs);
     run.written = {a.output, mtl};
+    if (!run.texture.copy.empty()) {
+        const std::string tmp = outputs.add(run.texture.copy);
+        std::ofstream os(tmp, std::ios::binary);
+        if (run.texture.upright) os << encode_png(read_image(run.image));
+        else os << read_input_file(run.image, "image file");
+        if (!os.flush()) throw InternalError(run.texture.copy + ": could not write the texture copy");
+        run.written.push_back(run.texture.copy);
+    }
     if (!a.glb.empty()) {
         write_glb(tm, a.glb, run.image, outputs);
         run.written.push_back(a.glb);
@@ -192,6 +222,8 @@ Command add_map_command(CLI::App& app) {
     sub->add_option("--spacing", args->spacing,
                     "Steiner point spacing for the paths, as a fraction of the mean edge length (default 0.34)")
         ->check(CLI::Range(0.01, 10.0));
+    sub->add_flag("--copy-image", args->copy_image,
+                  "copy the image beside the OBJ, so the OBJ, MTL and image can be moved together");
     sub->add_flag("--no-refine", [args](std::int64_t) { args->refine = false; },
                   "skip the relaxation (paper §2.4): the bare mean value embedding");
     sub->add_option("--snap", args->snap,

@@ -27,12 +27,24 @@ struct MapArgs {
     double snap = -1;    ///< --snap: how far a point feature may be off the surface (< 0: the default)
     bool refine = true;
     bool quiet = false;
+    bool copy_image = false;  ///< --copy-image: the image beside the OBJ
 };
+
+/// The image the OBJ's material names, when it is not the input image itself.
+struct TextureCopy {
+    std::string copy;      ///< where the copy is written (empty: the material names the input image)
+    bool upright = false;  ///< a JPEG turned by EXIF: the copy is the upright picture as PNG
+};
+
+/// Which texture copy `ctmap map` writes beside the OBJ for `image`: an upright PNG for a JPEG
+/// with an EXIF orientation, else a plain copy with --copy-image (unless it is already there).
+TextureCopy texture_for_obj(const MapArgs& args, const std::string& image);
 
 /// A map made and written by `run_map`.
 struct MapRun {
     MapResult result;
     std::string image;  ///< the image used (empty when only image_size was given)
+    TextureCopy texture;
     int width = 0, height = 0;
     std::vector<std::string> written;  ///< the files written, in order
 };

@@ -269,6 +269,16 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
     r.certificate = certify(r.textured(), r.cut.feature_vertex, r.feature_uv);
     r.timings_ms.certify = ms_since(t0);
     if (!options.refine) r.before_refine = r.certificate.distortion;
+    // The faces of each patch together (in patch order, each patch's in the cut's order), so a
+    // written OBJ has one group per patch rather than a switch at every other face.
+    std::vector<int> order(r.cut.mesh.faces.size());
+    for (std::size_t f = 0; f < order.size(); ++f) order[f] = int(f);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return r.cut.face_patch[a] < r.cut.face_patch[b]; });
+    std::vector<Tri> faces(order.size());
+    std::vector<int> patch(order.size());
+    for (std::size_t f = 0; f < order.size(); ++f) faces[f] = r.cut.mesh.faces[order[f]], patch[f] = r.cut.face_patch[order[f]];
+    r.cut.mesh.faces = std::move(faces);
+    r.cut.face_patch = std::move(patch);
     // Back to the input's coordinates: its own vertices exactly, the inserted ones through the box.
     std::vector<Vec3>& out = r.cut.mesh.positions;
     for (std::size_t v = 0; v < out.size(); ++v)

@@ -12,6 +12,7 @@
 #include "ctmap/errors.h"
 #include "ctmap/io/image.h"
 #include "ctmap/io/input_file.h"
+#include "ctmap/io/vertex_normals.h"
 
 namespace ctmap {
 namespace {
@@ -84,11 +85,13 @@ void write_glb(const TexturedMesh& tm, const std::string& path, const std::strin
     const bool has_uv = !tm.uvs.empty();
     const GlbVertices vertices = split_vertices(tm);
     const std::vector<std::uint32_t>& idx = vertices.indices;
-    std::vector<float> pos, uv;
+    std::vector<float> pos, uv, nrm;
     Eigen::AlignedBox3f box;
+    const std::vector<Vec3> normals = vertex_normals(tm.mesh);
     for (auto [v, t] : vertices.source) {
         const Eigen::Vector3f p = float_position(tm.mesh.positions[v], v, path);
         pos.insert(pos.end(), {p.x(), p.y(), p.z()});
+        nrm.insert(nrm.end(), {float(normals[v].x()), float(normals[v].y()), float(normals[v].z())});
         box.extend(p);
         if (!has_uv) continue;
         const Vec2 w = t >= 0 ? tm.uvs[t] : Vec2(0, 0);  // a vertex on no face has no UV
@@ -117,6 +120,9 @@ void write_glb(const TexturedMesh& tm, const std::string& path, const std::strin
     m.accessors[pos_acc].minValues = {double(box.min().x()), double(box.min().y()), double(box.min().z())};
     m.accessors[pos_acc].maxValues = {double(box.max().x()), double(box.max().y()), double(box.max().z())};
     prim.attributes["POSITION"] = pos_acc;
+    prim.attributes["NORMAL"] =  // smooth shading in three.js and Blender
+        add_accessor(add_view(m, append(buf, nrm), nrm.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                     TINYGLTF_COMPONENT_TYPE_FLOAT, nrm.size() / 3, TINYGLTF_TYPE_VEC3);
     if (has_uv)
         prim.attributes["TEXCOORD_0"] =
             add_accessor(add_view(m, append(buf, uv), uv.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),

@@ -9,6 +9,7 @@
 
 #include "ctmap/errors.h"
 #include "ctmap/io/input_file.h"
+#include "ctmap/io/vertex_normals.h"
 
 namespace ctmap {
 namespace {
@@ -62,14 +63,25 @@ void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::s
         put_double(s, t.y());
         s += '\n';
     }
+    for (const Vec3& n : vertex_normals(tm.mesh)) {  // smooth shading: `vn` i is vertex i's normal
+        s += "vn ";
+        put_double(s, n.x());
+        s += ' ';
+        put_double(s, n.y());
+        s += ' ';
+        put_double(s, n.z());
+        s += '\n';
+    }
     s += "usemtl ctmap_texture\n";
     const bool groups = tm.patch.size() == tm.mesh.faces.size();
     for (std::size_t f = 0; f < tm.mesh.faces.size(); ++f) {
         if (groups && (f == 0 || tm.patch[f] != tm.patch[f - 1])) s += "g patch_" + std::to_string(tm.patch[f]) + '\n';
         s += 'f';
         for (int k = 0; k < 3; ++k) {
-            s += ' ' + std::to_string(tm.mesh.faces[f][k] + 1);
-            if (has_uv) s += '/' + std::to_string(tm.uv_faces[f][k] + 1);
+            const std::string v = std::to_string(tm.mesh.faces[f][k] + 1);
+            s += ' ' + v + '/';
+            if (has_uv) s += std::to_string(tm.uv_faces[f][k] + 1);
+            s += '/' + v;
         }
         s += '\n';
     }
