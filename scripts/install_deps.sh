@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev libstb-dev libtinygltf-dev libexif-dev
   libgtest-dev libbenchmark-dev gnuplot-nox
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  clang-14 libclang-rt-14-dev llvm-14  # scripts/fuzz.sh: clang, libFuzzer's runtime, llvm-symbolizer
   nodejs chromium
 )
 # npm ships inside NodeSource's nodejs; only a Debian nodejs needs Debian's npm beside it.

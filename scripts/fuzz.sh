@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (fuzz/, clang, ASan + UBSan) in build-fuzz and runs each for a
+# bounded time on a scratch copy of its seed corpus (fuzz/corpus/<target>; the committed corpus is
+# never grown). Fails if any target reports a crash, a sanitizer report, a leak, a time-out (an
+# input over 5 s) or running out of memory (2 GB).
+# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET (default 60)] [TARGET ...]   (fuzz/README.md)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+shift || true
+all_targets=(fuzz_off fuzz_obj fuzz_ply fuzz_stl fuzz_textured_obj fuzz_features fuzz_image fuzz_glb fuzz_gltf)
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
+dir=build-fuzz
+
+# Debian's clang-14 (scripts/install_deps.sh: clang-14, libclang-rt-14-dev, llvm-14).
+cxx=${CTMAP_FUZZ_CXX:-$(command -v clang++ || command -v clang++-14 || true)}
+if [ -z "$cxx" ]; then
+  echo "fuzz: no clang++ (install clang-14 and libclang-rt-14-dev: scripts/install_deps.sh)" >&2
+  exit 1
+fi
+symbolizer=$(command -v llvm-symbolizer-14 || command -v llvm-symbolizer || true)
+
+start=$SECONDS
+# The generator and the compiler are chosen at the first configure only (changing the compiler of
+# an existing build tree makes CMake drop its cache).
+first=()
+if [ ! -f "$dir/CMakeCache.txt" ]; then
+  command -v ninja >/dev/null && first=(-G Ninja)
+  first+=(-DCMAKE_CXX_COMPILER="$cxx")
+fi
+# -O1 without NDEBUG: assertions (Eigen's, CGAL's, the library's) stay on while fuzzing.
+cmake -S . -B "$dir" ${first[@]+"${first[@]}"} -DCTMAP_FUZZ=ON \
+  -DCTMAP_BUILD_TESTS=OFF -DCTMAP_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" >/dev/null
+cmake --build "$dir" --target fuzz_all -j2
+echo "fuzz: build took $((SECONDS - start)) s"
+
+# One run folder per invocation, in the build tree: each target's corpus copy, log and artifacts.
+runs="$dir/fuzz-runs/$(date +%Y%m%d-%H%M%S)"
+mkdir -p "$runs"
+ln -sfn "$(basename "$runs")" "$dir/fuzz-runs/latest"
+
+max_len_of() {
+  case $1 in
+    fuzz_image | fuzz_glb | fuzz_gltf) echo 16384 ;;
+    *) echo 8192 ;;
+  esac
+}
+
+export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0}
+[ -n "$symbolizer" ] && export ASAN_SYMBOLIZER_PATH="$symbolizer"
+
+# CTMAP_FUZZ_KEEP_GOING=1: fork mode (one child at a time) that records every crash, time-out and
+# out-of-memory input and keeps fuzzing, instead of stopping at the first; still fails if any.
+keep_going=()
+[ "${CTMAP_FUZZ_KEEP_GOING:-0}" = 1 ] && keep_going=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
+
+failed=()
+for t in "${targets[@]}"; do
+  exe="$dir/fuzz/$t"
+  [ -x "$exe" ] || { echo "fuzz: no target $t (targets: ${all_targets[*]})" >&2; exit 1; }
+  work="$runs/$t"
+  mkdir -p "$work/corpus"
+  cp fuzz/corpus/"$t"/* "$work/corpus/"
+  log="$work/log.txt"
+  mkdir -p "$work/tmp"  # the targets' input files (fuzz_common.h)
+  t0=$SECONDS
+  rc=0
+  # The outer timeout only guards against libFuzzer itself hanging.
+  TMPDIR="$PWD/$work/tmp" timeout --signal=KILL $((seconds + 120)) "$exe" "$work/corpus" -max_total_time="$seconds" -timeout=5 \
+    -rss_limit_mb=2048 -max_len="$(max_len_of "$t")" -detect_leaks=1 -print_final_stats=1 \
+    -artifact_prefix="$work/" ${keep_going[@]+"${keep_going[@]}"} >"$log" 2>&1 || rc=$?
+  artifacts=$(find "$work" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' \
+    -o -name 'oom-*' \) | sort)
+  n_artifacts=$(printf '%s' "$artifacts" | grep -c . || true)
+  [ "$rc" -ne 0 ] || [ "$n_artifacts" -eq 0 ] || rc=1
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | head -1 || true)
+  [ -n "$execs" ] || execs=$(grep -oE '^#[0-9]+' "$log" | tail -1 | tr -d '#' || true)
+  [ ${#keep_going[@]} -eq 0 ] || result_n=" x$n_artifacts"
+  cov=$(grep -oE 'cov: [0-9]+' "$log" | tail -1 | grep -oE '[0-9]+' || true)
+  if [ "$rc" -eq 0 ]; then
+    result=ok
+  else
+    if grep -q 'ERROR: libFuzzer: timeout' "$log"; then result=timeout
+    elif grep -qE 'ERROR: libFuzzer: (out-of-memory|malloc limit)' "$log"; then result=out-of-memory
+    elif grep -q 'ERROR: LeakSanitizer' "$log"; then result=leak
+    elif grep -q 'ERROR: AddressSanitizer' "$log"; then
+      result="asan:$(grep -oE 'ERROR: AddressSanitizer: [a-z-]+' "$log" | head -1 | awk '{print $3}')"
+    elif grep -q 'runtime error:' "$log"; then result=ubsan
+    elif grep -q '==ctmap-fuzz==' "$log"; then result=contract
+    elif [ "$rc" -eq 137 ]; then result=hung
+    else result="crash(rc=$rc)"
+    fi
+    result+=${result_n:-}
+    failed+=("$t")
+  fi
+  artifact=$(printf '%s' "$artifacts" | head -1)
+  printf 'fuzz: %-18s %-14s execs=%-9s cov=%-6s %3ss%s\n' "$t" "$result" "${execs:-?}" "${cov:-?}" \
+    "$((SECONDS - t0))" "${artifact:+  reproducer: $artifact}"
+  if [ "$result" != ok ]; then
+    echo "---- $t: the report ($log)"
+    grep -E '==ctmap-fuzz==|ERROR:|runtime error|^ *#[0-9]+ 0x' "$log" | head -12 | cut -c1-220 | sed 's/^/    /'
+  fi
+done
+echo "fuzz: ${#targets[@]} targets, ${seconds} s each, $((SECONDS - start)) s in all; logs in $runs"
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "fuzz: FAILED: ${failed[*]} (reproduce: $dir/fuzz/TARGET REPRODUCER)" >&2
+  exit 1
+fi
