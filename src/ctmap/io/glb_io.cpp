@@ -3,6 +3,7 @@
 #include <tiny_gltf.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -249,6 +250,11 @@ TexturedMesh read_glb(const std::string& path, GlbTexture* texture) {
     tinygltf::Model m;
     tinygltf::TinyGLTF gltf;
     std::string err, warn;
+    // The texture is taken as stored bytes (embedded_texture); tinygltf's own decoding of it (stb
+    // on a buffer view it does not bound: ASan, issue 17's fuzzing) is not needed.
+    gltf.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                           void*) { return true; },
+                        nullptr);
     const bool ok = has_glb_extension(path) ? gltf.LoadBinaryFromFile(&m, &err, &warn, path)
                                             : gltf.LoadASCIIFromFile(&m, &err, &warn, path);
     if (!ok) throw BadInput(path, "not a readable glTF file: " + err);
@@ -258,7 +264,11 @@ TexturedMesh read_glb(const std::string& path, GlbTexture* texture) {
     const auto pos = read_accessor<float>(m, p.attributes.at("POSITION"), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, path);
     const auto idx = read_accessor<std::uint32_t>(m, p.indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, path);
     TexturedMesh tm;
-    for (std::size_t i = 0; i < pos.size(); i += 3) tm.mesh.positions.emplace_back(pos[i], pos[i + 1], pos[i + 2]);
+    for (std::size_t i = 0; i < pos.size(); i += 3) {
+        if (!std::isfinite(pos[i]) || !std::isfinite(pos[i + 1]) || !std::isfinite(pos[i + 2]))
+            throw BadInput(path, "vertex " + std::to_string(i / 3) + " has a non-finite coordinate (NaN or infinity)");
+        tm.mesh.positions.emplace_back(pos[i], pos[i + 1], pos[i + 2]);
+    }
     for (std::size_t i = 0; i + 2 < idx.size(); i += 3) {
         Tri t{int(idx[i]), int(idx[i + 1]), int(idx[i + 2])};
         for (std::uint32_t k = 0; k < 3; ++k)

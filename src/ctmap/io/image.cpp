@@ -9,10 +9,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 
 #include "ctmap/errors.h"
 #include "ctmap/io/atomic_file.h"
+#include "ctmap/io/image_bytes.h"
 #include "ctmap/io/input_file.h"
 
 namespace ctmap {
@@ -21,47 +23,35 @@ namespace {
 /// No texture ctmap maps has more pixels than this (16k x 16k); larger headers are broken files.
 constexpr std::int64_t kMaxPixels = std::int64_t(1) << 28;
 
-void check_file(const std::string& path) {
-    check_input_file(path, "image file");
-}
-
 std::string reason() {
     const char* r = stbi_failure_reason();
     return r && *r ? std::string(" (") + r + ")" : std::string();
 }
 
-/// "PNG" or "JPEG" from the file's first bytes, or empty for anything else.
-std::string format_of(const std::string& path) {
-    unsigned char head[8] = {};
-    std::ifstream in(path, std::ios::binary);
-    in.read(reinterpret_cast<char*>(head), sizeof head);
-    if (in.gcount() >= 8 && std::memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0) return "PNG";
-    if (in.gcount() >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) return "JPEG";
-    return {};
-}
+/// The bytes of an image file or buffer checked for what stb_image trusts (image_bytes.h), its
+/// header read, and sizes no real texture has refused before any pixel is allocated.
+struct CheckedImage {
+    std::string format;  ///< "PNG" or "JPEG"
+    std::string bytes;   ///< what stb_image may decode
+    int width = 0, height = 0;  ///< as stored (before EXIF orientation)
+};
 
-/// Reads the header (size only) and refuses sizes no real texture has, before any pixel is
-/// allocated. Returns the format's name.
-std::string check_header(const std::string& path) {
-    const std::string format = format_of(path);
-    if (format.empty()) throw BadInput(path, "not a PNG or JPEG image (unrecognised file signature)");
-    int w = 0, h = 0, n = 0;
-    if (!stbi_info(path.c_str(), &w, &h, &n))
-        throw BadInput(path, "the " + format + " header is truncated or corrupt" + reason());
-    if (w <= 0 || h <= 0) throw BadInput(path, "the image has no pixels");
-    if (std::int64_t(w) * h > kMaxPixels)
-        throw BadInput(path, "the image is too large (" + std::to_string(w) + " x " + std::to_string(h) +
+CheckedImage check_image_bytes(const std::string& bytes, const std::string& name) {
+    CheckedImage c;
+    c.format = image_format(bytes);
+    if (c.format.empty()) throw BadInput(name, "not a PNG or JPEG image (unrecognised file signature)");
+    c.bytes = sanitized_image_bytes(bytes, name);
+    if (c.bytes.size() > std::size_t(std::numeric_limits<int>::max()))
+        throw BadInput(name, "the image file is too large (over 2 GB)");
+    int n = 0;
+    if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(c.bytes.data()), int(c.bytes.size()), &c.width,
+                               &c.height, &n))
+        throw BadInput(name, "the " + c.format + " header is truncated or corrupt" + reason());
+    if (c.width <= 0 || c.height <= 0) throw BadInput(name, "the image has no pixels");
+    if (std::int64_t(c.width) * c.height > kMaxPixels)
+        throw BadInput(name, "the image is too large (" + std::to_string(c.width) + " x " + std::to_string(c.height) +
                                  " pixels; at most " + std::to_string(kMaxPixels) + " are supported)");
-    return format;
-}
-
-/// The first bytes of a file (enough for a JPEG's EXIF block, which must sit in its first 64 KiB).
-std::string head_bytes(const std::string& path, std::size_t n = 1 << 16) {
-    std::ifstream in(path, std::ios::binary);
-    std::string s(n, '\0');
-    in.read(s.data(), std::streamsize(n));
-    s.resize(std::size_t(in.gcount()));
-    return s;
+    return c;
 }
 
 /// Orientations 5-8 swap width and height.
@@ -104,34 +94,15 @@ int exif_orientation(const std::string& bytes) {
     return o >= 1 && o <= 8 ? o : 1;
 }
 
-Image read_image(const std::string& path) {
-    check_file(path);
-    const std::string format = check_header(path);
-    int w = 0, h = 0, n = 0;
-    std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(path.c_str(), &w, &h, &n, 4), stbi_image_free);
-    if (!data) throw BadInput(path, "the " + format + " image data is truncated or corrupt" + reason());
-    Image img;
-    img.exif_orientation = format == "JPEG" ? exif_orientation(head_bytes(path)) : 1;
-    img.width = swaps_axes(img.exif_orientation) ? h : w;
-    img.height = swaps_axes(img.exif_orientation) ? w : h;
-    img.channels = 4;
-    if (img.exif_orientation == 1) img.pixels.assign(data.get(), data.get() + std::size_t(w) * h * 4);
-    else img.pixels = orient(data.get(), w, h, img.exif_orientation);
-    img.path = path;
-    return img;
-}
-
 Image decode_image(const std::string& bytes, const std::string& name) {
-    const auto* b = reinterpret_cast<const stbi_uc*>(bytes.data());
-    const int len = int(std::min<std::size_t>(bytes.size(), std::size_t(1) << 30));
+    const CheckedImage c = check_image_bytes(bytes, name);
     int w = 0, h = 0, n = 0;
-    if (!stbi_info_from_memory(b, len, &w, &h, &n) || w <= 0 || h <= 0)
-        throw BadInput(name, "the embedded texture is not a readable PNG or JPEG" + reason());
-    if (std::int64_t(w) * h > kMaxPixels) throw BadInput(name, "the embedded texture is too large");
-    std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load_from_memory(b, len, &w, &h, &n, 4), stbi_image_free);
-    if (!data) throw BadInput(name, "the embedded texture is truncated or corrupt" + reason());
+    std::unique_ptr<stbi_uc, void (*)(void*)> data(
+        stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(c.bytes.data()), int(c.bytes.size()), &w, &h, &n, 4),
+        stbi_image_free);
+    if (!data) throw BadInput(name, "the " + c.format + " image data is truncated or corrupt" + reason());
     Image img;
-    img.exif_orientation = exif_orientation(bytes);
+    img.exif_orientation = c.format == "JPEG" ? exif_orientation(bytes) : 1;
     img.width = swaps_axes(img.exif_orientation) ? h : w;
     img.height = swaps_axes(img.exif_orientation) ? w : h;
     img.channels = 4;
@@ -141,14 +112,14 @@ Image decode_image(const std::string& bytes, const std::string& name) {
     return img;
 }
 
+Image read_image(const std::string& path) { return decode_image(read_input_file(path, "image file"), path); }
+
 void read_image_size(const std::string& path, int& width, int& height) {
-    check_file(path);
-    const std::string format = check_header(path);
-    int w = 0, h = 0, n = 0;
-    stbi_info(path.c_str(), &w, &h, &n);
-    const int o = format == "JPEG" ? exif_orientation(head_bytes(path)) : 1;
-    width = swaps_axes(o) ? h : w;
-    height = swaps_axes(o) ? w : h;
+    const std::string bytes = read_input_file(path, "image file");
+    const CheckedImage c = check_image_bytes(bytes, path);
+    const int o = c.format == "JPEG" ? exif_orientation(bytes) : 1;
+    width = swaps_axes(o) ? c.height : c.width;
+    height = swaps_axes(o) ? c.width : c.height;
 }
 
 std::string encode_png(const Image& image) {

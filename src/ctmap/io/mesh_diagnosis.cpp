@@ -375,8 +375,14 @@ void check_before_reading(const std::string& path, const std::string& ext) {
     if (ext == ".off" || ext == ".ply") {
         std::string bytes = slurp(path);
         bytes.erase(0, utf8_bom_length(bytes));
-        if (ext == ".ply") check_ply_declarations(path, bytes);
-        else check_off_face_sizes(path, bytes);
+        try {
+            if (ext == ".ply") check_ply_declarations(path, bytes);
+            else check_off_face_sizes(path, bytes);
+        } catch (const BadInput&) {  // OFF: the diagnosis names the problem in the readers' own words, if it can
+            const std::string why = ext == ".ply" ? std::string() : diagnose_off(bytes);
+            if (!why.empty()) throw BadInput(path, "not a valid " + ext.substr(1) + " file: " + why);
+            throw;
+        }
     }
     if (ext == ".off") check_off_counts(path);
     if (ext == ".stl") check_binary_stl(path);

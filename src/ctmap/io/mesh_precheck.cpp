@@ -1,6 +1,7 @@
 #include "ctmap/io/mesh_precheck.h"
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -180,14 +181,21 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
 }
 
 void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
-    // The header: a keyword line ending in OFF (counts on it or on the next non-comment line).
+    // CGAL's OFF scanner reads each line's numbers and then trusts them: a negative corner count
+    // or index is cast to size_t, a colour beyond 255 to unsigned char, and a colour's entries are
+    // read past the numbers the line has (ASan and UBSan found each). So every vertex and face
+    // line is checked here the way the scanner will read it (File_scanner_OFF.h), and refused with
+    // its line number unless each of those reads is in range.
     std::size_t pos = 0;
-    auto next_line = [&](std::string_view& l) {
+    int line_no = 0;
+    std::string_view l;
+    auto next_line = [&]() {
         while (pos < bytes.size()) {
             std::size_t eol = bytes.find('\n', pos);
             if (eol == std::string_view::npos) eol = bytes.size();
             l = bytes.substr(pos, eol - pos);
             pos = eol + 1;
+            ++line_no;
             if (const std::size_t c = l.find('#'); c != std::string_view::npos) l = l.substr(0, c);
             Tokens t{l};
             std::string_view first;
@@ -195,29 +203,85 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
         }
         return false;
     };
-    std::string_view l, kw, a, b;
-    if (!next_line(l)) return;
+    if (!next_line()) return;
     Tokens head{l};
+    std::string_view kw, a, b;
     if (!head.next(kw) || kw.size() < 3 || kw.substr(kw.size() - 3) != "OFF") return;
     if (head.next(a) && a == "BINARY") return;  // check_off_counts bounds the binary form
+    std::string_view prefix = kw.substr(0, kw.size() - 3);
+    const bool textures = prefix.substr(0, 2) == "ST";
+    if (textures) prefix.remove_prefix(2);
+    const bool colours = !prefix.empty() && prefix[0] == 'C';
+    if (colours) prefix.remove_prefix(1);
+    const bool normals = !prefix.empty() && prefix[0] == 'N';
+    if (normals) prefix.remove_prefix(1);
+    const bool homogeneous = !prefix.empty() && prefix[0] == '4';
+    if (homogeneous) prefix.remove_prefix(1);
+    if (!prefix.empty()) return;  // nOFF and other forms: CGAL's reader and diagnose_mesh_file answer
+    const int H = homogeneous ? 1 : 0;
     long long nv = 0, nf = 0;
     if (a.empty()) {
-        if (!next_line(l)) return;
+        if (!next_line()) return;
         head = Tokens{l};
         if (!head.next(a)) return;
     }
-    if (!as_count(a, nv) || !head.next(b) || !as_count(b, nf)) return;
-    for (long long v = 0; v < nv; ++v)
-        if (!next_line(l)) return;
-    for (long long f = 0; f < nf; ++f) {
-        if (!next_line(l)) return;
+    if (!as_count(a, nv) || !head.next(b) || !as_count(b, nf)) return;  // check_off_counts and the reader say so
+
+    std::vector<double> entries;
+    auto read_entries = [&](const std::string& who) {
+        entries.clear();
         Tokens t{l};
-        std::string_view n;
-        long long corners = 0;
-        if (!t.next(n) || !as_count(n, corners)) return;  // diagnose_mesh_file names the line
-        if ((long double)corners * 2 > (long double)(bytes.size() - std::min(pos, bytes.size())) + l.size())
-            refuse(path, "not a valid off file: face " + std::to_string(f) + " declares " + std::to_string(corners) +
-                             " corners, more than the file holds");
+        std::string_view tok;
+        while (t.next(tok)) {
+            std::string_view num = tok;
+            if (!num.empty() && num[0] == '+') num.remove_prefix(1);
+            double v = 0;
+            const auto [end, ec] = std::from_chars(num.data(), num.data() + num.size(), v);
+            if (ec != std::errc() || end != num.data() + num.size() || !std::isfinite(v))
+                refuse(path, "not a valid off file: line " + std::to_string(line_no) + ": " + who + ": '" +
+                                 std::string(tok) + "' is not a finite number");
+            entries.push_back(v);
+        }
+    };
+    auto at = [&](const std::string& who) { return "not a valid off file: line " + std::to_string(line_no) + ": " + who; };
+    // A colour of `n` entries from entries[first]: 0, 1 (an index into CGAL's colour map), 3 or 4
+    // (integers 0-255, or fractions 0-1).
+    auto check_colour = [&](long long first, long long n, const std::string& who) {
+        if (n != 0 && n != 1 && n != 3 && n != 4)
+            refuse(path, at(who) + " has " + std::to_string(n) + " colour values (0, 1, 3 or 4 are allowed)");
+        if (n == 1 && !(entries[first] >= 0 && entries[first] <= 1e6 && std::floor(entries[first]) == entries[first]))
+            refuse(path, at(who) + ": a colour index must be a non-negative integer");
+        for (long long k = first; k < first + std::min<long long>(n, 3) && n >= 3; ++k)
+            if (!(entries[k] >= 0 && entries[k] <= 255))
+                refuse(path, at(who) + ": a colour value must lie in [0, 255] (or [0, 1])");
+    };
+    for (long long v = 0; v < nv; ++v) {
+        if (!next_line()) return;  // truncated: the reader and diagnose_mesh_file say where
+        const std::string who = "vertex " + std::to_string(v);
+        read_entries(who);
+        const long long coords = 3 + H, need = coords + (normals ? 3 + H : 0) + (textures ? 2 + H : 0);
+        if ((long long)entries.size() < need)
+            refuse(path, at(who) + " has " + std::to_string(entries.size()) + " numbers; the " + std::string(kw) +
+                             " header asks for at least " + std::to_string(need));
+        if (colours) check_colour(coords + (normals ? 3 + H : 0), (long long)entries.size() - need, who);
+    }
+    for (long long f = 0; f < nf; ++f) {
+        if (!next_line()) return;
+        const std::string who = "face " + std::to_string(f);
+        read_entries(who);
+        const double n = entries[0];
+        if (!(n >= 3 && std::floor(n) == n))
+            refuse(path, at(who) + ": the corner count must be an integer of at least 3");
+        if ((long double)n * 2 > (long double)(bytes.size() - std::min(pos, bytes.size())) + l.size())
+            refuse(path, at(who) + " declares " + std::to_string((long long)n) + " corners, more than the file holds");
+        const long long corners = (long long)n;
+        if ((long long)entries.size() < corners + 1)
+            refuse(path, at(who) + " lists fewer than " + std::to_string(corners) + " vertex indices");
+        for (long long k = 1; k <= corners; ++k)
+            if (!(entries[k] >= 0 && entries[k] < double(nv) && std::floor(entries[k]) == entries[k]))
+                refuse(path, at(who) + ": vertex index " + std::to_string(entries[k]) +
+                                 " is not an integer in [0, " + std::to_string(nv) + ")");
+        if (colours) check_colour(corners + 1, (long long)entries.size() - corners - 1, who);
     }
 }
 

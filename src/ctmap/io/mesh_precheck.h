@@ -15,8 +15,10 @@ namespace ctmap {
 /// \throw BadInput naming `path` and the line or element.
 void check_ply_declarations(const std::string_view path, std::string_view bytes);
 
-/// OFF (text): every face's corner count is at most the number of bytes left in the file; BINARY
-/// OFF: every face's corner count fits in the bytes left.
+/// OFF (text, [ST][C][N][4]OFF): every vertex and face line as CGAL's scanner will read it: only
+/// finite numbers; enough numbers for the header's coordinates, normals and texture coordinates;
+/// a face's corner count an integer of at least 3 that fits in the file, its indices integers in
+/// range; colours of 0, 1, 3 or 4 values in range. BINARY OFF is bounded by check_off_counts.
 /// \throw BadInput naming `path` and the face.
 void check_off_face_sizes(const std::string_view path, std::string_view bytes);
 

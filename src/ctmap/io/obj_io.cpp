@@ -231,7 +231,10 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
     if (tm.mesh.positions.empty()) throw BadInput(path, "no vertices (is this an OBJ file?)");
     if (tm.mesh.faces.empty()) throw BadInput(path, "no faces");
     if (any_uv_face && any_plain_face) throw BadInput(path, "some faces have texture coordinates and some do not");
-    if (!any_uv_face) tm.uv_faces.clear();
+    if (!any_uv_face) {  // `vt` lines no face uses: no map (writers index uv_faces per face)
+        tm.uv_faces.clear();
+        tm.uvs.clear();
+    }
     if (!all_faces_grouped) tm.patch.clear();
     tm.chart.assign(tm.mesh.faces.size(), 0);
 

@@ -1,0 +1,85 @@
+// Issue 17, must-show 3: the layouts the cut used to give up on or blow up with, as one JSON line
+// per run: three_peaks with N random feasible features under a twist T (tests/random_features.h),
+// and nefertiti with 16 vertex features plus N 3D point features placed by a one-to-one map
+// (points inside faces, their image by the same barycentric mix of the Tutte map). Prints faces
+// in and out, the cut's counts, the time and the certificate; a failure prints its message.
+//
+//   hard_layouts twist MESH N TWIST [--seed S]
+//   hard_layouts points MESH N [--seed S]
+#include <chrono>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+
+#include "ctmap/errors.h"
+#include "ctmap/io/read_mesh.h"
+#include "ctmap/map_texture.h"
+#include "random_features.h"
+
+namespace {
+
+using namespace ctmap;
+using Clock = std::chrono::steady_clock;
+
+/// N point features inside random faces, imaged by the barycentric mix of `tutte` (one-to-one
+/// on each face, so on the disc), plus `border` border vertex features.
+std::vector<MapFeature> point_features(const TriMesh& mesh, const std::vector<Vec2>& tutte, int n, int border,
+                                       std::mt19937& rng) {
+    test::RandomFeatures rf = test::random_features(mesh, tutte, border, border, 0.0, rng);
+    std::vector<MapFeature> out = test::map_features_of(rf);
+    std::uniform_int_distribution<int> face(0, mesh.num_faces() - 1);
+    std::uniform_real_distribution<double> u(0.05, 0.95);
+    for (int i = 0; i < n; ++i) {
+        const Tri& t = mesh.faces[face(rng)];
+        double a = u(rng), b = u(rng);
+        if (a + b > 0.95) a = 0.95 - a * 0.5, b = 0.95 - b * 0.5;
+        if (a + b > 0.95) continue;
+        const double c = 1 - a - b;
+        MapFeature f;
+        f.name = "p" + std::to_string(i);
+        f.point = a * mesh.positions[t[0]] + b * mesh.positions[t[1]] + c * mesh.positions[t[2]];
+        const Vec2 q = a * tutte[t[0]] + b * tutte[t[1]] + c * tutte[t[2]];
+        f.uv = Vec2(0.5 + 0.45 * q.x(), 0.5 + 0.45 * q.y());
+        out.push_back(f);
+    }
+    return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 4) {
+        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] | hard_layouts points MESH N [--seed S]\n";
+        return 2;
+    }
+    const std::string kind = argv[1], mesh_file = argv[2];
+    const int n = std::stoi(argv[3]);
+    const double twist = kind == "twist" && argc > 4 ? std::stod(argv[4]) : 0;
+    unsigned seed = 1;
+    for (int i = 4; i + 1 < argc; ++i)
+        if (std::string(argv[i]) == "--seed") seed = unsigned(std::stoul(argv[i + 1]));
+    const TriMesh mesh = read_mesh(mesh_file);
+    const std::vector<Vec2> tutte = test::tutte_map(mesh);
+    std::mt19937 rng(seed);
+    std::vector<MapFeature> features;
+    if (kind == "twist") features = test::map_features_of(test::random_features(mesh, tutte, n, 12, twist, rng));
+    else features = point_features(mesh, tutte, n, 16, rng);
+    nlohmann::ordered_json row{{"kind", kind}, {"mesh", mesh_file}, {"features", features.size()},
+                               {"twist", twist}, {"seed", seed}, {"faces_in", mesh.num_faces()}};
+    const auto t0 = Clock::now();
+    try {
+        MapOptions options;
+        const MapResult r = map_texture(mesh, features, options);
+        row["faces_out"] = r.cut.mesh.num_faces();
+        row["growth"] = double(r.cut.mesh.num_faces()) / mesh.num_faces();
+        row["steiner_vertices"] = r.cut_stats.steiner_vertices;
+        row["valid"] = r.certificate.valid;
+        row["ms"] = {{"triangulate", r.timings_ms.triangulate}, {"paths", r.timings_ms.paths}, {"embed", r.timings_ms.embed}, {"refine", r.timings_ms.refine}};
+    } catch (const std::exception& e) {
+        row["error"] = e.what();
+    }
+    row["seconds"] = std::chrono::duration<double>(Clock::now() - t0).count();
+    std::cout << row.dump() << std::endl;
+    return row.contains("error") ? 1 : 0;
+}
