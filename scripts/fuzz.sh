@@ -57,6 +57,10 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0}
 keep_going=()
 [ "${CTMAP_FUZZ_KEEP_GOING:-0}" = 1 ] && keep_going=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
 
+# CTMAP_FUZZ_SEED=N: a fixed libFuzzer seed, so a run (CI's) can be repeated exactly.
+seed=()
+[ -n "${CTMAP_FUZZ_SEED:-}" ] && seed=(-seed="$CTMAP_FUZZ_SEED")
+
 failed=()
 for t in "${targets[@]}"; do
   exe="$dir/fuzz/$t"
@@ -68,10 +72,20 @@ for t in "${targets[@]}"; do
   mkdir -p "$work/tmp"  # the targets' input files (fuzz_common.h)
   t0=$SECONDS
   rc=0
+  # First the inputs that once failed (fuzz/regressions/<target>): each must now pass.
+  if [ -d "fuzz/regressions/$t" ]; then
+    if ! TMPDIR="$PWD/$work/tmp" timeout --signal=KILL 120 "$exe" -timeout=5 -rss_limit_mb=2048 \
+        fuzz/regressions/"$t"/* >"$work/regressions.txt" 2>&1; then
+      echo "fuzz: $t fails on a regression input (fuzz/regressions/$t; $work/regressions.txt)"
+      grep -E '==ctmap-fuzz==|ERROR:|runtime error|Running:' "$work/regressions.txt" | tail -6 | sed 's/^/    /'
+      failed+=("$t")
+      continue
+    fi
+  fi
   # The outer timeout only guards against libFuzzer itself hanging.
   TMPDIR="$PWD/$work/tmp" timeout --signal=KILL $((seconds + 120)) "$exe" "$work/corpus" -max_total_time="$seconds" -timeout=5 \
     -rss_limit_mb=2048 -max_len="$(max_len_of "$t")" -detect_leaks=1 -print_final_stats=1 \
-    -artifact_prefix="$work/" ${keep_going[@]+"${keep_going[@]}"} >"$log" 2>&1 || rc=$?
+    -artifact_prefix="$work/" ${seed[@]+"${seed[@]}"} ${keep_going[@]+"${keep_going[@]}"} >"$log" 2>&1 || rc=$?
   artifacts=$(find "$work" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' \
     -o -name 'oom-*' \) | sort)
   n_artifacts=$(printf '%s' "$artifacts" | grep -c . || true)

@@ -16,3 +16,8 @@ echo "== bad-input suite under AddressSanitizer + UndefinedBehaviorSanitizer"
 bash scripts/build.sh build-asan -DCTMAP_SANITIZE=ON -DCTMAP_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --output-on-failure -j2 -R 'BadInput|RoundTrip' -E '^Render' --timeout 1200)
+# The readers under libFuzzer (fuzz/README.md): first the inputs that once failed, then 60 s of
+# fuzzing per target from a fixed seed (repeatable); any sanitizer report, crash, leak or input
+# over 5 s fails. Longer runs: scripts/fuzz.sh 600.
+echo "== fuzzing the readers (fuzz/README.md)"
+CTMAP_FUZZ_SEED=${CTMAP_FUZZ_SEED:-1} bash scripts/fuzz.sh "${CTMAP_FUZZ_SECONDS:-60}"

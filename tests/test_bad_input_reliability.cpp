@@ -299,5 +299,39 @@ TEST(BadInputReliability, RenderIsQuietWithQ) {
     EXPECT_TRUE(fs::is_regular_file(d / "m.png"));
 }
 
+// ---------------------------------------------------------------------------------------------
+// The inputs the fuzzers found (fuzz/regressions): through the real program, in this build and
+// the sanitizer build, each is refused with exit 2 and no sanitizer report.
+
+TEST(BadInputReliability, WhatTheFuzzersFoundIsRefusedCleanly) {
+    TempDir d;
+    copy_example(d);
+    const fs::path root = fs::path(CTMAP_TESTS_SOURCE_DIR) / "fuzz" / "regressions";
+    ASSERT_TRUE(fs::is_directory(root)) << root;
+    int cases = 0;
+    for (const auto& target : fs::directory_iterator(root)) {
+        const std::string t = target.path().filename().string();
+        for (const auto& input : fs::directory_iterator(target.path())) {
+            const std::string name = input.path().filename().string();
+            std::string file, args;
+            if (t == "fuzz_image") {
+                file = d / (name + ".png");
+                args = "validate " + q(d / "in.off") + " " + q(d / "f.json") + " --image " + q(file);
+            } else {
+                const std::string ext = t == "fuzz_textured_obj" ? ".obj" : "." + t.substr(5);
+                file = d / (name + ext);
+                args = t == "fuzz_textured_obj" || t == "fuzz_glb" || t == "fuzz_gltf"
+                           ? "check " + q(file) + " --features " + q(d / "f.json")
+                           : "info " + q(file);
+            }
+            fs::copy_file(input.path(), file);
+            expect_refused(d, args, file, {});
+            fs::remove(file);
+            ++cases;
+        }
+    }
+    EXPECT_GE(cases, 13);
+}
+
 }  // namespace
 }  // namespace ctmap::test

@@ -1,6 +1,7 @@
 #include "ctmap/io/image_bytes.h"
 
 #include <cstdint>
+#include <algorithm>
 #include <cstring>
 
 #include "ctmap/errors.h"
@@ -18,9 +19,9 @@ std::uint32_t be32(const std::string& b, std::size_t at) { return (be16(b, at) <
 /// counts of one table sum to at most 256 (ITU T.81 B.2.4.2).
 void check_huffman_segment(const std::string& b, std::size_t from, std::size_t to, const std::string& name) {
     std::size_t at = from;
-    while (at + 17 <= to) {
+    while (at + 1 < to) {
         std::uint32_t sum = 0;
-        for (int i = 0; i < 16; ++i) sum += (unsigned char)b[at + 1 + i];
+        for (std::size_t i = 0; i < 16 && at + 1 + i < to; ++i) sum += (unsigned char)b[at + 1 + i];
         if (sum > 256)
             throw BadInput(name, "corrupt JPEG: a Huffman table declares " + std::to_string(sum) +
                                      " codes (at most 256)");
@@ -42,8 +43,9 @@ void check_jpeg(const std::string& b, const std::string& name) {
         }
         if (m == 0xD9) return;  // EOI
         const std::size_t len = be16(b, at + 2);
+        // A truncated table is still read by stb_image (as zeros past the end): check what is there.
+        if (m == 0xC4) check_huffman_segment(b, at + 4, std::min(at + 2 + len, b.size()), name);
         if (len < 2 || at + 2 + len > b.size()) return;  // truncated: stb_image reports it
-        if (m == 0xC4) check_huffman_segment(b, at + 4, at + 2 + len, name);
         at += 2 + len;
     }
 }
