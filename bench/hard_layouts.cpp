@@ -1,12 +1,14 @@
 // Issue 17, must-show 3: the layouts the cut used to give up on or blow up with, as one JSON line
 // per run: three_peaks with N random feasible features under a twist T (tests/random_features.h),
-// and nefertiti with 16 vertex features plus N 3D point features placed by a one-to-one map
+// and a mesh with every border vertex a feature plus N 3D point features placed by a one-to-one map
 // (points inside faces, their image by the same barycentric mix of the Tutte map). Prints faces
 // in and out, the cut's counts, the time and the certificate; a failure prints its message.
 //
 //   hard_layouts twist MESH N TWIST [--seed S]
 //   hard_layouts points MESH N [--seed S]
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -23,19 +25,20 @@ using namespace ctmap;
 using Clock = std::chrono::steady_clock;
 
 /// N point features inside random faces, imaged by the barycentric mix of `tutte` (one-to-one
-/// on each face, so on the disc), plus `border` border vertex features.
+/// on each face, so on the disc), plus `border` border vertex features (all of them: the border
+/// polygon is then Tutte's, and holds every interior point).
 std::vector<MapFeature> point_features(const TriMesh& mesh, const std::vector<Vec2>& tutte, int n, int border,
                                        std::mt19937& rng) {
     test::RandomFeatures rf = test::random_features(mesh, tutte, border, border, 0.0, rng);
     std::vector<MapFeature> out = test::map_features_of(rf);
     std::uniform_int_distribution<int> face(0, mesh.num_faces() - 1);
-    std::uniform_real_distribution<double> u(0.05, 0.95);
-    for (int i = 0; i < n; ++i) {
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int i = 0; int(out.size()) < border + n; ++i) {
         const Tri& t = mesh.faces[face(rng)];
-        double a = u(rng), b = u(rng);
-        if (a + b > 0.95) a = 0.95 - a * 0.5, b = 0.95 - b * 0.5;
-        if (a + b > 0.95) continue;
-        const double c = 1 - a - b;
+        // Uniform in the triangle, kept 2% of the way clear of its sides.
+        const double r1 = std::sqrt(u(rng)), r2 = u(rng);
+        const double a = 1 - r1, b = r1 * (1 - r2), c = r1 * r2;
+        if (std::min({a, b, c}) < 0.02) continue;
         MapFeature f;
         f.name = "p" + std::to_string(i);
         f.point = a * mesh.positions[t[0]] + b * mesh.positions[t[1]] + c * mesh.positions[t[2]];
@@ -64,7 +67,7 @@ int main(int argc, char** argv) {
     std::mt19937 rng(seed);
     std::vector<MapFeature> features;
     if (kind == "twist") features = test::map_features_of(test::random_features(mesh, tutte, n, 12, twist, rng));
-    else features = point_features(mesh, tutte, n, 16, rng);
+    else features = point_features(mesh, tutte, n, int(WorkMesh(mesh).border_loop().size()), rng);
     nlohmann::ordered_json row{{"kind", kind}, {"mesh", mesh_file}, {"features", features.size()},
                                {"twist", twist}, {"seed", seed}, {"faces_in", mesh.num_faces()}};
     const auto t0 = Clock::now();

@@ -70,6 +70,7 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
     // digits lands this close to its vertex, and a vertex inserted there would make slivers.
     const double snap = 1e-6 * (hi - lo).norm();
     moved = 0;
+    const int input_vertices = mesh.num_vertices();
     std::unique_ptr<WorkMesh> wm;
     for (std::size_t i = 0; i < features.size(); ++i) {
         if (features[i].vertex >= 0) {
@@ -95,7 +96,10 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
             const Vec3& v = wm->positions[t[k]];
             const double shortest = std::min((wm->positions[t[(k + 1) % 3]] - v).norm(), (wm->positions[t[(k + 2) % 3]] - v).norm());
             const double d = (v - p).norm();
-            if (d <= std::max(snap, std::min(vertex_snap, 0.25 * shortest)) && d < at_distance) at_vertex = t[k], at_distance = d;
+            // An input vertex within the snap distance; a vertex inserted for another point feature
+            // only where the two points coincide (two nearby features stay two features).
+            const double limit = t[k] < input_vertices ? std::max(snap, std::min(vertex_snap, 0.25 * shortest)) : snap;
+            if (d <= limit && d < at_distance) at_vertex = t[k], at_distance = d;
         }
         if (at_vertex >= 0) {
             vertex[i] = at_vertex;

@@ -22,6 +22,7 @@ namespace {
 
 /// No texture ctmap maps has more pixels than this (16k x 16k); larger headers are broken files.
 constexpr std::int64_t kMaxPixels = std::int64_t(1) << 28;
+constexpr std::int64_t kMaxPixelsPerByte = 16384;
 
 std::string reason() {
     const char* r = stbi_failure_reason();
@@ -48,6 +49,13 @@ CheckedImage check_image_bytes(const std::string& bytes, const std::string& name
                                &c.height, &n))
         throw BadInput(name, "the " + c.format + " header is truncated or corrupt" + reason());
     if (c.width <= 0 || c.height <= 0) throw BadInput(name, "the image has no pixels");
+    // No real PNG or JPEG packs more pixels per byte than this (deflate's limit is ~1032 bytes
+    // per byte, 8 pixels a byte at 1 bit; a flat JPEG block costs bits): a 1 KB file declaring
+    // 64508 x 4113 pixels is a corrupt header, and decoding it took seconds.
+    if (double(c.width) * c.height > double(kMaxPixelsPerByte) * double(bytes.size()))
+        throw BadInput(name, "the " + c.format + " header declares " + std::to_string(c.width) + " x " +
+                                 std::to_string(c.height) + " pixels, far more than its " + std::to_string(bytes.size()) +
+                                 " bytes can hold (a corrupt header)");
     if (std::int64_t(c.width) * c.height > kMaxPixels)
         throw BadInput(name, "the image is too large (" + std::to_string(c.width) + " x " + std::to_string(c.height) +
                                  " pixels; at most " + std::to_string(kMaxPixels) + " are supported)");

@@ -21,7 +21,8 @@ void check_huffman_segment(const std::string& b, std::size_t from, std::size_t t
     std::size_t at = from;
     while (at + 1 < to) {
         std::uint32_t sum = 0;
-        for (std::size_t i = 0; i < 16 && at + 1 + i < to; ++i) sum += (unsigned char)b[at + 1 + i];
+        // stb_image reads all 16 counts of a table that starts in the segment, even past its end.
+        for (std::size_t i = 0; i < 16 && at + 1 + i < b.size(); ++i) sum += (unsigned char)b[at + 1 + i];
         if (sum > 256)
             throw BadInput(name, "corrupt JPEG: a Huffman table declares " + std::to_string(sum) +
                                      " codes (at most 256)");

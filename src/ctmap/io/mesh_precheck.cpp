@@ -74,7 +74,20 @@ long long read_count(const unsigned char* p, int bytes, bool little) {
 
 void check_ply_declarations(const std::string_view path, std::string_view bytes) {
     if (bytes.substr(0, 3) != "ply") return;  // not PLY at all: diagnose_mesh_file says what it is
-    const std::size_t end = bytes.find("end_header");
+    // The header ends at the first line whose word is `end_header` (not any "end_header" inside
+    // a word: "elemend_header" ends nothing, and CGAL's reader reads on past it).
+    std::size_t end = std::string_view::npos;
+    for (std::size_t p = 0; p < bytes.size();) {
+        std::size_t eol = bytes.find('\n', p);
+        if (eol == std::string_view::npos) eol = bytes.size();
+        Tokens t{bytes.substr(p, eol - p)};
+        std::string_view first;
+        if (t.next(first) && first == "end_header") {
+            end = p;
+            break;
+        }
+        p = eol + 1;
+    }
     if (end == std::string_view::npos) refuse(path, "not a valid ply file: the header has no 'end_header' line");
     std::size_t data = bytes.find('\n', end);
     data = data == std::string_view::npos ? bytes.size() : data + 1;
@@ -206,8 +219,29 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
     if (!next_line()) return;
     Tokens head{l};
     std::string_view kw, a, b;
-    if (!head.next(kw) || kw.size() < 3 || kw.substr(kw.size() - 3) != "OFF") return;
+    if (!head.next(kw) || kw.find("OFF") == std::string_view::npos) return;  // not OFF: diagnose_mesh_file says so
+    if (kw.size() < 3 || kw.substr(kw.size() - 3) != "OFF")  // CGAL's scanner reads "COFF!4" as COFF
+        refuse(path, "not a valid off file: the first word '" + std::string(kw) +
+                         "' is not an OFF keyword ([ST][C][N][4]OFF)");
     if (head.next(a) && a == "BINARY") return;  // check_off_counts bounds the binary form
+    // The counts, on the keyword's line or the next: three integers and nothing else (CGAL reads
+    // whatever follows them as the first vertex).
+    auto check_counts_line = [&](Tokens t, std::string_view first) {
+        std::string_view tok = first;
+        int n = 0;
+        long long v = 0;
+        do {
+            if (!as_count(tok, v) || ++n > 3)
+                refuse(path, "not a valid off file: line " + std::to_string(line_no) +
+                                 ": the header's counts must be three non-negative integers, found '" +
+                                 std::string(tok) + "'");
+        } while (t.next(tok));
+        // Three: with two, CGAL takes the first number of the next line as the edge count.
+        if (n < 3)
+            refuse(path, "not a valid off file: line " + std::to_string(line_no) +
+                             ": the header needs three counts (vertices, faces, edges)");
+    };
+    if (!a.empty()) check_counts_line(head, a);
     std::string_view prefix = kw.substr(0, kw.size() - 3);
     const bool textures = prefix.substr(0, 2) == "ST";
     if (textures) prefix.remove_prefix(2);
@@ -217,13 +251,22 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
     if (normals) prefix.remove_prefix(1);
     const bool homogeneous = !prefix.empty() && prefix[0] == '4';
     if (homogeneous) prefix.remove_prefix(1);
-    if (!prefix.empty()) return;  // nOFF and other forms: CGAL's reader and diagnose_mesh_file answer
+    if (!prefix.empty())
+        refuse(path, "not a valid off file: the keyword '" + std::string(kw) +
+                         "' is not supported (ctmap reads [ST][C][N][4]OFF, text or BINARY)");
     const int H = homogeneous ? 1 : 0;
     long long nv = 0, nf = 0;
     if (a.empty()) {
         if (!next_line()) return;
         head = Tokens{l};
         if (!head.next(a)) return;
+        check_counts_line(head, a);
+        head = Tokens{l};
+        head.next(a);
+    } else {
+        head = Tokens{l};
+        head.next(kw);
+        head.next(a);
     }
     if (!as_count(a, nv) || !head.next(b) || !as_count(b, nf)) return;  // check_off_counts and the reader say so
 
@@ -256,7 +299,9 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
                 refuse(path, at(who) + ": a colour value must lie in [0, 255] (or [0, 1])");
     };
     for (long long v = 0; v < nv; ++v) {
-        if (!next_line()) return;  // truncated: the reader and diagnose_mesh_file say where
+        if (!next_line())  // CGAL's scanner reads a colour from the missing line before it notices
+            refuse(path, "not a valid off file: the file is truncated: the header declares " + std::to_string(nv) +
+                             " vertices, but the file ends after " + std::to_string(v));
         const std::string who = "vertex " + std::to_string(v);
         read_entries(who);
         const long long coords = 3 + H, need = coords + (normals ? 3 + H : 0) + (textures ? 2 + H : 0);
@@ -266,7 +311,9 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
         if (colours) check_colour(coords + (normals ? 3 + H : 0), (long long)entries.size() - need, who);
     }
     for (long long f = 0; f < nf; ++f) {
-        if (!next_line()) return;
+        if (!next_line())
+            refuse(path, "not a valid off file: the file is truncated: the header declares " + std::to_string(nf) +
+                             " faces, but the file ends after " + std::to_string(f));
         const std::string who = "face " + std::to_string(f);
         read_entries(who);
         const double n = entries[0];
