@@ -22,6 +22,17 @@ void put_double(std::string& out, double v) {
     out.append(buf, end);
 }
 
+/// `keyword` and the three coordinates of `p`, each in its shortest round-trip form.
+void put_line(std::string& out, const char* keyword, const Vec3& p) {
+    out += keyword;
+    put_double(out, p.x());
+    out += ' ';
+    put_double(out, p.y());
+    out += ' ';
+    put_double(out, p.z());
+    out += '\n';
+}
+
 std::string relative_to(const std::string& target, const std::string& from_file) {
     fs::path base = fs::absolute(fs::path(from_file)).parent_path();
     fs::path t = fs::absolute(fs::path(target));
@@ -47,15 +58,7 @@ void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::s
     s.reserve(tm.mesh.positions.size() * 60 + tm.uvs.size() * 40 + tm.mesh.faces.size() * 40);
     s += "# written by ctmap: UVs per face corner, UV = (x / W, 1 - y / H)\n";
     s += "mtllib " + mtl_name + "\n";
-    for (const Vec3& p : tm.mesh.positions) {
-        s += "v ";
-        put_double(s, p.x());
-        s += ' ';
-        put_double(s, p.y());
-        s += ' ';
-        put_double(s, p.z());
-        s += '\n';
-    }
+    for (const Vec3& p : tm.mesh.positions) put_line(s, "v ", p);
     for (const Vec2& t : tm.uvs) {
         s += "vt ";
         put_double(s, t.x());
@@ -63,15 +66,7 @@ void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::s
         put_double(s, t.y());
         s += '\n';
     }
-    for (const Vec3& n : vertex_normals(tm.mesh)) {  // smooth shading: `vn` i is vertex i's normal
-        s += "vn ";
-        put_double(s, n.x());
-        s += ' ';
-        put_double(s, n.y());
-        s += ' ';
-        put_double(s, n.z());
-        s += '\n';
-    }
+    for (const Vec3& n : vertex_normals(tm.mesh)) put_line(s, "vn ", n);  // smooth shading: vn i is vertex i's normal
     s += "usemtl ctmap_texture\n";
     const bool groups = tm.patch.size() == tm.mesh.faces.size();
     for (std::size_t f = 0; f < tm.mesh.faces.size(); ++f) {
