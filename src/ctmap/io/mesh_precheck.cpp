@@ -73,7 +73,11 @@ long long read_count(const unsigned char* p, int bytes, bool little) {
 }  // namespace
 
 void check_ply_declarations(const std::string_view path, std::string_view bytes) {
-    if (bytes.substr(0, 3) != "ply") return;  // not PLY at all: diagnose_mesh_file says what it is
+    // Not PLY at all: diagnose_mesh_file says what it is. CGAL's reader skips leading white space
+    // (a vertical tab before "ply" is still PLY to it), so the check does too.
+    std::size_t lead = 0;
+    while (lead < bytes.size() && is_space(bytes[lead])) ++lead;
+    if (bytes.substr(lead, 3) != "ply") return;
     // The header ends at the first line whose word is `end_header` (not any "end_header" inside
     // a word: "elemend_header" ends nothing, and CGAL's reader reads on past it).
     std::size_t end = std::string_view::npos;
