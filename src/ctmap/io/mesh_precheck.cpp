@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -14,6 +15,14 @@ namespace {
 
 [[noreturn]] void refuse(std::string_view path, const std::string& problem) {
     throw BadInput(std::string(path), problem);
+}
+
+/// A count read as a double, in words: digits while it fits a long long, else scientific.
+std::string short_count(double n) {
+    if (n < 9e18) return std::to_string((long long)n);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", n);
+    return buf;
 }
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
@@ -324,7 +333,7 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
         if (!(n >= 3 && std::floor(n) == n))
             refuse(path, at(who) + ": the corner count must be an integer of at least 3");
         if ((long double)n * 2 > (long double)(bytes.size() - std::min(pos, bytes.size())) + l.size())
-            refuse(path, at(who) + " declares " + std::to_string((long long)n) + " corners, more than the file holds");
+            refuse(path, at(who) + " declares " + short_count(n) + " corners, more than the file holds");
         const long long corners = (long long)n;
         if ((long long)entries.size() < corners + 1)
             refuse(path, at(who) + " lists fewer than " + std::to_string(corners) + " vertex indices");
