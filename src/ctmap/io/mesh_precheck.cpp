@@ -305,11 +305,14 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
     auto check_colour = [&](long long first, long long n, const std::string& who) {
         if (n != 0 && n != 1 && n != 3 && n != 4)
             refuse(path, at(who) + " has " + std::to_string(n) + " colour values (0, 1, 3 or 4 are allowed)");
-        if (n == 1 && !(entries[first] >= 0 && entries[first] <= 1e6 && std::floor(entries[first]) == entries[first]))
-            refuse(path, at(who) + ": a colour index must be a non-negative integer");
-        for (long long k = first; k < first + std::min<long long>(n, 3) && n >= 3; ++k)
-            if (!(entries[k] >= 0 && entries[k] <= 255))
-                refuse(path, at(who) + ": a colour value must lie in [0, 255] (or [0, 1])");
+        if (n == 1 && !(entries[first] >= 0 && entries[first] <= 255 && std::floor(entries[first]) == entries[first]))
+            refuse(path, at(who) + ": a colour index must be an integer in [0, 255]");
+        // CGAL reads three integers as 0-255, and otherwise multiplies all three by 255.
+        bool fractions = false;
+        for (long long k = first; k < first + 3 && n >= 3; ++k) fractions |= std::floor(entries[k]) != entries[k];
+        for (long long k = first; k < first + 3 && n >= 3; ++k)
+            if (!(entries[k] >= 0 && entries[k] <= (fractions ? 1 : 255)))
+                refuse(path, at(who) + ": a colour is three integers in [0, 255] or three fractions in [0, 1]");
     };
     for (long long v = 0; v < nv; ++v) {
         if (!next_line())  // CGAL's scanner reads a colour from the missing line before it notices
