@@ -354,8 +354,7 @@ void check_off_counts(const std::string& path) {
 
 /// Binary STL: CGAL merges equal corners through an ordered map, where a NaN corner silently
 /// becomes some other vertex; so every coordinate is checked here, before CGAL sees it.
-void check_binary_stl(const std::string& path) {
-    const std::string text = slurp(path);
+void check_binary_stl(const std::string& path, const std::string& text) {
     const std::size_t start = text.find_first_not_of(" \t\r\n");
     if (start != std::string::npos && text.compare(start, 5, "solid") == 0) return;  // ASCII STL
     if (std::string p = diagnose_stl_binary(text); !p.empty()) throw BadInput(path, "not a valid stl file: " + p);
@@ -371,10 +370,9 @@ void check_binary_stl(const std::string& path) {
 
 }  // namespace
 
-void check_before_reading(const std::string& path, const std::string& ext) {
+void check_before_reading(const std::string& path, const std::string& ext, const std::string& file_bytes) {
     if (ext == ".off" || ext == ".ply") {
-        std::string bytes = slurp(path);
-        bytes.erase(0, utf8_bom_length(bytes));
+        const std::string_view bytes = std::string_view(file_bytes).substr(utf8_bom_length(file_bytes));
         try {
             if (ext == ".ply") check_ply_declarations(path, bytes);
             else check_off_face_sizes(path, bytes);
@@ -385,7 +383,7 @@ void check_before_reading(const std::string& path, const std::string& ext) {
         }
     }
     if (ext == ".off") check_off_counts(path);
-    if (ext == ".stl") check_binary_stl(path);
+    if (ext == ".stl") check_binary_stl(path, file_bytes);
 }
 
 std::string diagnose_mesh_file(const std::string& path, const std::string& ext) {

@@ -16,7 +16,8 @@ namespace ctmap {
 /// and headers too broken to read, pass: the reader and diagnose_mesh_file() report them.
 /// \pre `ext` is the lower-case extension with its dot (".off", ".stl", ...).
 /// \throw BadInput naming `path` and the problem (truncated, NaN).
-void check_before_reading(const std::string& path, const std::string& ext);
+/// `bytes` are the file's, as the reader will parse them (read once by read_mesh).
+void check_before_reading(const std::string& path, const std::string& ext, const std::string& bytes);
 
 /// The first specific problem in a mesh file that a reader rejected, as a sentence naming the line
 /// and the element ("line 5: vertex 1 has a non-finite coordinate 'nan' (NaN or infinity)"), or an

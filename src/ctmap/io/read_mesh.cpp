@@ -65,8 +65,8 @@ bool read_soup_from_bytes(const std::string& bytes, const std::string& ext, std:
 /// Reads the polygon soup with CGAL; when CGAL fails, says why (mesh_diagnosis.h).
 void read_soup(const std::string& path, const std::string& ext, std::vector<Point>& points,
                std::vector<std::vector<std::size_t>>& polygons) {
-    check_before_reading(path, ext);  // what CGAL would trust blindly (mesh_diagnosis.h)
     const std::string bytes = read_input_file(path, "mesh file");
+    check_before_reading(path, ext, bytes);  // what CGAL would trust blindly (mesh_diagnosis.h)
     const std::string what = "not a valid " + ext.substr(1) + " file: ";
     bool ok = false;
     try {
