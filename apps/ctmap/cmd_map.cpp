@@ -139,6 +139,10 @@ MapRun run_map(const MapArgs& a) {
     MapOptions options;
     if (a.spacing > 0) options.cut.spacing_factor = a.spacing;
     options.refine = a.refine;
+    options.refine_mode = a.refine_mode == "paper" ? RefineMode::paper : RefineMode::isometric;
+    options.isometric.border = a.border_mode == "fixed" ? BorderMode::fixed : BorderMode::free;
+    options.isometric.keep_in_box = a.border_mode != "unbounded";
+    options.isometric.max_iterations = a.iterations;
     options.snap = a.snap;
     Progress progress(!a.quiet, isatty(fileno(stderr)));
     options.progress = [&](const std::string& stage, int done, int total) { progress(stage, done, total); };
@@ -192,7 +196,15 @@ void print_map_summary(const MapArgs& a, const MapRun& run, std::ostream& os) {
        << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate
        << " degenerate, feature error " << c.feature_max_error << ", border " << (c.border_simple ? "simple" : "crossing")
        << ")\n";
-    if (a.refine)
+    const Distortion& dr = r.after_relax;
+    const IsometricStats& is = r.isometric_stats;
+    if (a.refine && a.refine_mode == "isometric")
+        os << "  relaxation (" << r.relax_stats.iterations << " sweeps), optimiser (" << is.iterations
+           << " iterations, " << a.border_mode << " border, " << (is.converged ? "converged" : "stopped") << ": " << is.stop
+           << "): symmetric Dirichlet " << fixed(d0.symmetric_dirichlet, 3) << " -> " << fixed(dr.symmetric_dirichlet, 3)
+           << " -> " << fixed(d1.symmetric_dirichlet, 3) << ", conformal mean " << fixed(d0.conformal_mean, 3) << " -> "
+           << fixed(dr.conformal_mean, 3) << " -> " << fixed(d1.conformal_mean, 3) << "\n";
+    else if (a.refine)
         os << "  refinement (" << r.relax_stats.iterations << " sweeps): symmetric Dirichlet " << fixed(d0.symmetric_dirichlet, 3)
            << " -> " << fixed(d1.symmetric_dirichlet, 3) << ", conformal mean " << fixed(d0.conformal_mean, 3) << " -> "
            << fixed(d1.conformal_mean, 3) << ", L2 stretch " << fixed(d0.l2_stretch, 3) << " -> " << fixed(d1.l2_stretch, 3)
@@ -201,7 +213,7 @@ void print_map_summary(const MapArgs& a, const MapRun& run, std::ostream& os) {
         os << "  no refinement: symmetric Dirichlet " << fixed(d1.symmetric_dirichlet, 3) << ", conformal mean "
            << fixed(d1.conformal_mean, 3) << ", L2 stretch " << fixed(d1.l2_stretch, 3) << "\n";
     os << "  ms: read " << fixed(t.read, 1) << ", triangulate " << fixed(t.triangulate, 1) << ", paths " << fixed(t.paths, 1)
-       << ", embed " << fixed(t.embed, 1) << ", refine " << fixed(t.refine, 1) << ", certify " << fixed(t.certify, 1)
+       << ", embed " << fixed(t.embed, 1) << ", refine " << fixed(t.refine, 1) << ", optimise " << fixed(t.optimise, 1) << ", certify " << fixed(t.certify, 1)
        << ", total " << fixed(t.total, 1) << "\n  wrote";
     for (const std::string& f : run.written) os << " " << f;
     os << "\n";
@@ -225,7 +237,19 @@ Command add_map_command(CLI::App& app) {
     sub->add_flag("--copy-image", args->copy_image,
                   "copy the image beside the OBJ, so the OBJ, MTL and image can be moved together");
     sub->add_flag("--no-refine", [args](std::int64_t) { args->refine = false; },
-                  "skip the relaxation (paper §2.4): the bare mean value embedding");
+                  "skip the refinement (paper §2.4 and the optimiser): the bare mean value embedding");
+    sub->add_option("--refine", args->refine_mode,
+                    "isometric (default): the paper's relaxation (§2.4), then the distortion optimiser (symmetric "
+                    "Dirichlet, every iterate certified valid, features exact); paper: the relaxation only")
+        ->check(CLI::IsMember({"paper", "isometric"}));
+    sub->add_option("--border-mode", args->border_mode,
+                    "with --refine isometric: free (default) lets the border vertices move, the border staying "
+                    "simple and inside the image; fixed keeps them on the straight sides between border features; "
+                    "unbounded is free without the image rectangle (UVs may leave [0, 1])")
+        ->check(CLI::IsMember({"free", "fixed", "unbounded"}));
+    sub->add_option("--iterations", args->iterations,
+                    "the optimiser's iteration cap (default 1000; it stops earlier when converged)")
+        ->check(CLI::Range(0, 1000000));
     sub->add_option("--snap", args->snap,
                     "how far a 3D \"point\" feature may lie off the surface, in the mesh's units (default 1e-4 of "
                     "the bounding-box diagonal); it is placed at the closest point of the surface")

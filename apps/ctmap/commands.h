@@ -26,6 +26,9 @@ struct MapArgs {
     double spacing = 0;  ///< 0: the cut's default
     double snap = -1;    ///< --snap: how far a point feature may be off the surface (< 0: the default)
     bool refine = true;
+    std::string refine_mode = "isometric";  ///< --refine paper|isometric
+    std::string border_mode = "free";       ///< --border-mode free|fixed
+    int iterations = 1000;                  ///< --iterations: the optimiser's cap
     bool quiet = false;
     bool copy_image = false;  ///< --copy-image: the image beside the OBJ
 };

@@ -264,8 +264,26 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
         stage("refine");
         t0 = Clock::now();
         r.before_refine = measure_distortion(r.textured());
-        r.relax_stats = relax(r.cut.mesh, r.uv, r.cut.feature_vertex, options.relax);
+        RelaxOptions ropt = options.relax;
+        const bool isometric = options.refine_mode == RefineMode::isometric;
+        if (isometric && options.isometric.border == BorderMode::fixed) ropt.move_border = false;
+        r.relax_stats = relax(r.cut.mesh, r.uv, r.cut.feature_vertex, ropt);
         r.timings_ms.refine = ms_since(t0);
+        if (isometric) {
+            r.after_relax = measure_distortion(r.textured());
+            stage("optimise");
+            t0 = Clock::now();
+            IsometricOptions iopt = options.isometric;
+            if (options.progress) {
+                const auto user = iopt.on_iteration;
+                iopt.on_iteration = [&, user](int it, const std::vector<Vec2>& uv, double e) {
+                    if (user) user(it, uv, e);
+                    options.progress("optimise", it, iopt.max_iterations);
+                };
+            }
+            r.isometric_stats = optimise_isometric(r.cut.mesh, r.uv, r.cut.feature_vertex, iopt);
+            r.timings_ms.optimise = ms_since(t0);
+        }
     }
 
     stage("certify");
@@ -273,6 +291,7 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
     r.certificate = certify(r.textured(), r.cut.feature_vertex, r.feature_uv);
     r.timings_ms.certify = ms_since(t0);
     if (!options.refine) r.before_refine = r.certificate.distortion;
+    if (!options.refine || options.refine_mode != RefineMode::isometric) r.after_relax = r.certificate.distortion;
     // The faces of each patch together (in patch order, each patch's in the cut's order), so a
     // written OBJ has one group per patch rather than a switch at every other face.
     std::vector<int> order(r.cut.mesh.faces.size());

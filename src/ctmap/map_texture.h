@@ -14,9 +14,16 @@
 #include "ctmap/embed/mean_value_embedding.h"
 #include "ctmap/io/features.h"
 #include "ctmap/mesh.h"
+#include "ctmap/refine/isometric.h"
 #include "ctmap/refine/relax.h"
 
 namespace ctmap {
+
+/// What the refinement does after the relaxation (`--refine`).
+enum class RefineMode {
+    paper,      ///< the paper's relaxation only (§2.4)
+    isometric,  ///< the relaxation, then the distortion optimiser (refine/isometric.h)
+};
 
 /// Options of `map_texture`.
 struct MapOptions {
@@ -24,18 +31,23 @@ struct MapOptions {
     EmbedOptions embed;
     RelaxOptions relax;
     bool refine = true;  ///< run the relaxation (paper §2.4); off gives the bare embedding
+    RefineMode refine_mode = RefineMode::isometric;
+    /// The optimiser's options (with RefineMode::isometric). Its border mode also decides the
+    /// relaxation's: with a fixed border the relaxation leaves the border vertices on their sides.
+    IsometricOptions isometric;
     /// How far a point feature may be moved onto a vertex near it, in the mesh's units (< 0:
     /// kDefaultSnapFraction of the bounding-box diagonal); `--snap`.
     double snap = -1;
-    /// Called when a stage starts ("triangulate", "paths", "embed", "refine", "certify") and, for
-    /// the paths, as they are inserted (done of total); for progress lines.
+    /// Called when a stage starts ("triangulate", "paths", "embed", "refine", "optimise",
+    /// "certify") and, for the paths and the optimiser's iterations, as they are done (done of
+    /// total); for progress lines.
     std::function<void(const std::string& stage, int done, int total)> progress;
 };
 
 /// Wall-clock milliseconds per stage, like the paper's Table 2 (`read` is filled by callers that
 /// read files; `total` is the sum of the stages run here plus `read`).
 struct MapTimings {
-    double read = 0, triangulate = 0, paths = 0, embed = 0, refine = 0, certify = 0, total = 0;
+    double read = 0, triangulate = 0, paths = 0, embed = 0, refine = 0, optimise = 0, certify = 0, total = 0;
 };
 
 /// One feature for `map_texture`: a vertex of the input mesh, or a 3D point on its surface
@@ -58,7 +70,9 @@ struct MapResult {
     CutStats cut_stats;
     FlatEdgeStats flat_edges;
     RelaxStats relax_stats;
+    IsometricStats isometric_stats;   ///< empty unless RefineMode::isometric
     Distortion before_refine;         ///< distortion of the bare embedding
+    Distortion after_relax;           ///< distortion after the paper's relaxation (before the optimiser)
     Certificate certificate;          ///< of the written map (valid, or map_texture throws)
     MapTimings timings_ms;
     int point_features = 0;           ///< features given as 3D points (inserted as vertices)

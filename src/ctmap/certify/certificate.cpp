@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "ctmap/errors.h"
+#include "ctmap/face_jacobian.h"
 
 namespace ctmap {
 namespace {
@@ -53,14 +54,6 @@ void check_shapes(const TexturedMesh& tm) {
                 throw BadInput("", "face " + std::to_string(f) + " uses vertex " + std::to_string(tm.mesh.faces[f][k]) +
                                        ", but there are " + std::to_string(nv));
         }
-}
-
-/// Singular values (s1 >= s2 >= 0) of the 2x2 matrix [[a, b], [c, d]] in closed form.
-void singular_values(double a, double b, double c, double d, double& s1, double& s2) {
-    const double E = 0.5 * (a + d), F = 0.5 * (a - d), G = 0.5 * (c + b), H = 0.5 * (c - b);
-    const double Q = std::hypot(E, H), R = std::hypot(F, G);
-    s1 = Q + R;
-    s2 = std::abs(Q - R);
 }
 
 }  // namespace
@@ -127,18 +120,12 @@ Distortion measure_distortion(const TexturedMesh& tm) {
     for (int f = 0; f < m.num_faces(); ++f) {
         const Tri& t = m.faces[f];
         const Tri& u = tm.uv_faces[f];
-        const Vec3 e1 = m.positions[t[1]] - m.positions[t[0]], e2 = m.positions[t[2]] - m.positions[t[0]];
-        const double l1 = e1.norm(), n = e1.cross(e2).norm();
-        const double A = 0.5 * n;
-        if (!(A > 0) || !(l1 > 0)) continue;
-        // The face in its own plane: P1 = (l1, 0), P2 = (e2.x, h); J = [q1 q2] [P1 P2]^-1.
-        const double px = e2.dot(e1) / l1, h = n / l1;
-        const Vec2 q1 = scale * (tm.uvs[u[1]] - tm.uvs[u[0]]), q2 = scale * (tm.uvs[u[2]] - tm.uvs[u[0]]);
-        // [P1 P2]^-1 = [[1/l1, -px/(l1 h)], [0, 1/h]]
-        const double a = q1.x() / l1, c = q1.y() / l1;
-        const double b = (q2.x() - px * a) / h, dd = (q2.y() - px * c) / h;
+        const FaceFrame F = face_frame(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+        const double A = F.area;
+        if (!(A > 0)) continue;
+        const Mat2 J = face_jacobian(F, scale * tm.uvs[u[0]], scale * tm.uvs[u[1]], scale * tm.uvs[u[2]]);
         double s1, s2;
-        singular_values(a, b, c, dd, s1, s2);
+        singular_values(J, s1, s2);
         double f_sd, f_conf, f_area, f_l2;
         if (s2 > 0) {
             f_sd = s1 * s1 + s2 * s2 + 1 / (s1 * s1) + 1 / (s2 * s2);
@@ -165,6 +152,47 @@ Distortion measure_distortion(const TexturedMesh& tm) {
         d.l2_stretch = std::sqrt(l2 / w_sum);
     }
     return d;
+}
+
+int count_border_crossings(const std::vector<Vec2>& pos, const std::vector<std::array<int, 2>>& border) {
+    int crossings = 0;
+    using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
+    std::vector<Box> boxes;
+    boxes.reserve(border.size());
+    for (std::size_t e = 0; e < border.size(); ++e) {
+        const Vec2 &a = pos[border[e][0]], &b = pos[border[e][1]];
+        boxes.emplace_back(CGAL::Bbox_2(std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()),
+                                        std::max(a.y(), b.y())),
+                           e);
+    }
+    // Closed boxes (CGAL's default) report touching boxes, so touching segments are tested too.
+    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+        const auto& e = border[x.info()];
+        const auto& g = border[y.info()];
+        int shared = -1, ea = -1, ga = -1;  // shared vertex, and the other end of each edge
+        for (int i = 0; i < 2; ++i)
+            for (int j = 0; j < 2; ++j)
+                if (e[i] == g[j]) {
+                    shared = e[i];
+                    ea = e[1 - i];
+                    ga = g[1 - j];
+                }
+        if (shared < 0) {
+            if (segments_intersect_2d(pos[e[0]], pos[e[1]], pos[g[0]], pos[g[1]])) ++crossings;
+            return;
+        }
+        // Neighbours along the border meet at their shared end; they must not overlap beyond it
+        // (collinear and pointing the same way), and neither may have zero length.
+        const Vec2 &s = pos[shared], &p = pos[ea], &q = pos[ga];
+        if (p == s || q == s) {
+            ++crossings;
+            return;
+        }
+        if (orientation_2d(s, p, q) == 0 && sign_of(p.x() - s.x()) == sign_of(q.x() - s.x()) &&
+            sign_of(p.y() - s.y()) == sign_of(q.y() - s.y()))
+            ++crossings;
+    });
+    return crossings;
 }
 
 Certificate certify(const TexturedMesh& tm, const std::vector<int>& feature_vertex,
@@ -294,42 +322,7 @@ Certificate certify(const TexturedMesh& tm, const std::vector<int>& feature_vert
         if (deg > 2) ++c.border_crossings;
     c.border_edges = int(border.size());
 
-    using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
-    std::vector<Box> boxes;
-    boxes.reserve(border.size());
-    for (std::size_t e = 0; e < border.size(); ++e) {
-        const Vec2 &a = pos[border[e][0]], &b = pos[border[e][1]];
-        boxes.emplace_back(CGAL::Bbox_2(std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()),
-                                        std::max(a.y(), b.y())),
-                           e);
-    }
-    // Closed boxes (CGAL's default) report touching boxes, so touching segments are tested too.
-    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-        const auto& e = border[x.info()];
-        const auto& g = border[y.info()];
-        int shared = -1, ea = -1, ga = -1;  // shared vertex, and the other end of each edge
-        for (int i = 0; i < 2; ++i)
-            for (int j = 0; j < 2; ++j)
-                if (e[i] == g[j]) {
-                    shared = e[i];
-                    ea = e[1 - i];
-                    ga = g[1 - j];
-                }
-        if (shared < 0) {
-            if (segments_intersect_2d(pos[e[0]], pos[e[1]], pos[g[0]], pos[g[1]])) ++c.border_crossings;
-            return;
-        }
-        // Neighbours along the border meet at their shared end; they must not overlap beyond it
-        // (collinear and pointing the same way), and neither may have zero length.
-        const Vec2 &s = pos[shared], &p = pos[ea], &q = pos[ga];
-        if (p == s || q == s) {
-            ++c.border_crossings;
-            return;
-        }
-        if (orientation_2d(s, p, q) == 0 && sign_of(p.x() - s.x()) == sign_of(q.x() - s.x()) &&
-            sign_of(p.y() - s.y()) == sign_of(q.y() - s.y()))
-            ++c.border_crossings;
-    });
+    c.border_crossings += count_border_crossings(pos, border);
     c.border_simple = c.border_crossings == 0;
 
     if (options.distortion) c.distortion = measure_distortion(tm);

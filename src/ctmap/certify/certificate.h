@@ -5,6 +5,7 @@
 /// The decisions use exact predicates (CGAL's Epick kernel, kept inside certificate.cpp), so a
 /// map that passes is valid for every reader that uses the same doubles.
 #include <nlohmann/json.hpp>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,13 @@ struct Distortion {
     double l2_stretch = 0;           ///< Sander et al. 2001 L2 stretch, sqrt(mean of (s1^-2 + s2^-2) / 2)
     int faces_measured = 0;
 };
+
+/// The pairs of border edges (`border`: indices into `pos`, each edge once) that cross or touch
+/// where they must not: two edges sharing no end that meet, neighbours sharing an end that
+/// overlap beyond it (collinear, pointing the same way), and edges of zero length. Exact
+/// predicates after a box-intersection filter, O(n log n). 0 means the border is simple, given
+/// that no vertex has more than two border edges (the caller checks that).
+int count_border_crossings(const std::vector<Vec2>& pos, const std::vector<std::array<int, 2>>& border);
 
 /// The certificate of one map.
 struct Certificate {

@@ -38,7 +38,8 @@ nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
                    {"fallback_fired", r.cut_stats.fallback_fired}};
     const MapTimings& t = r.timings_ms;
     j["timings_ms"] = {{"read", t.read},   {"triangulate", t.triangulate}, {"paths", t.paths}, {"embed", t.embed},
-                       {"refine", t.refine}, {"certify", t.certify},       {"total", t.total}};
+                       {"refine", t.refine}, {"optimise", t.optimise},     {"certify", t.certify},
+                       {"total", t.total}};
     j["certificate"] = certificate_to_json(r.certificate);
     j["distortion_before_refine"] = distortion_json(r.before_refine);
     const RelaxStats& s = r.relax_stats;
@@ -48,6 +49,23 @@ nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
                   {"moves_rejected", s.moves_rejected},
                   {"free_vertices", s.free_vertices},
                   {"converged", s.converged}};
+    j["distortion_after_relax"] = distortion_json(r.after_relax);
+    const IsometricStats& o = r.isometric_stats;
+    if (!o.energy.empty()) {
+        nlohmann::json energy = nlohmann::json::array();
+        for (double e : o.energy) energy.push_back(number_or_null(e));
+        j["optimiser"] = {{"iterations", o.iterations},
+                          {"energy", energy},
+                          {"converged", o.converged},
+                          {"stop", o.stop},
+                          {"halvings", o.halvings},
+                          {"exact_rejections", o.exact_rejections},
+                          {"border_rejections", o.border_rejections},
+                          {"free_vertices", o.free_vertices},
+                          {"sliding_vertices", o.sliding_vertices}};
+    } else {
+        j["optimiser"] = nullptr;
+    }
     return j;
 }
 

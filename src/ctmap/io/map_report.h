@@ -19,8 +19,12 @@ struct MapReportInputs {
 /// The report of one map. Keys: `inputs`, `counts` {features, point_features, triangles (image
 /// triangles = patches), paths, input_vertices, input_faces, vertices, faces, inserted_vertices,
 /// steiner_vertices, flat_edges_split, fallback_fired}, `timings_ms` {read, triangulate, paths,
-/// embed, refine, certify, total}, `certificate` (certificate_to_json, with the distortion after
-/// refinement), `distortion_before_refine`, `relax` {sweeps, moves, converged, ...}.
+/// embed, refine, optimise, certify, total}, `certificate` (certificate_to_json, with the
+/// distortion of the written map), `distortion_before_refine` (the bare embedding),
+/// `distortion_after_relax` (after the paper's relaxation), `relax` {sweeps, moves, converged,
+/// ...}, `optimiser` (null with --refine paper) {iterations, energy (the symmetric Dirichlet
+/// energy on entry and after each iteration), converged, stop, halvings, exact_rejections,
+/// border_rejections, free_vertices, sliding_vertices}.
 nlohmann::json map_report(const MapResult& result, const MapReportInputs& inputs);
 
 }  // namespace ctmap

@@ -13,6 +13,7 @@
 #include "ctmap/certify/certificate.h"
 #include "ctmap/embed/mean_value_embedding.h"
 #include "ctmap/errors.h"
+#include "ctmap/face_jacobian.h"
 
 namespace ctmap {
 namespace {
@@ -288,21 +289,13 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
     const double cell = std::max({mean_len, max_len / 8, 1e-300});
     SegmentGrid grid(cell, uv, border_edges);
 
-    // Per face, what the symmetric Dirichlet energy needs of the 3D triangle: its area and the
-    // inverse of its edge matrix in its own plane, [P1 P2]^-1 = [[i00, i01], [0, i11]].
-    struct FaceFrame {
-        double area = 0, i00 = 0, i01 = 0, i11 = 0;
-    };
+    // Per face, what the symmetric Dirichlet energy needs of the 3D triangle (face_jacobian.h).
     std::vector<FaceFrame> frame(mesh.faces.size());
     double area3 = 0;
     for (int f = 0; f < mesh.num_faces(); ++f) {
         const Tri& t = mesh.faces[f];
-        const Vec3 e1 = mesh.positions[t[1]] - mesh.positions[t[0]], e2 = mesh.positions[t[2]] - mesh.positions[t[0]];
-        const double l1 = e1.norm(), n = e1.cross(e2).norm();
-        if (!(l1 > 0) || !(n > 0)) continue;  // zero area: contributes nothing
-        const double px = e2.dot(e1) / l1, h = n / l1;
-        frame[f] = {0.5 * n, 1 / l1, -px / (l1 * h), 1 / h};
-        area3 += 0.5 * n;
+        frame[f] = face_frame(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+        area3 += frame[f].area;
     }
     // The energy the certificate reports: with J the unscaled Jacobian of a face and s^2 =
     // A3 / A2 the scale that brings the UV area A2 to the 3D area A3,
@@ -323,10 +316,8 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
         const double cross = q1.x() * q2.y() - q1.y() * q2.x();
         out.a2 += 0.5 * std::abs(cross);
         if (F.area == 0) return;
-        const double j00 = q1.x() * F.i00, j10 = q1.y() * F.i00;
-        const double j01 = q1.x() * F.i01 + q2.x() * F.i11, j11 = q1.y() * F.i01 + q2.y() * F.i11;
-        const double fro = j00 * j00 + j01 * j01 + j10 * j10 + j11 * j11;
-        const double det = j00 * j11 - j01 * j10;
+        const Mat2 J = face_jacobian(F, a, b, c);
+        const double fro = J.squaredNorm(), det = J.determinant();
         out.x += F.area * fro;
         out.y += F.area * fro / (det * det);
     };

@@ -1,0 +1,427 @@
+#include "ctmap/refine/isometric.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SVD>
+#include <Eigen/SparseCore>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include "ctmap/border_loop.h"
+#include "ctmap/certify/certificate.h"
+#include "ctmap/errors.h"
+#include "ctmap/face_jacobian.h"
+#include "ctmap/refine/border_guard.h"
+#include "ctmap/refine/flip_free_step.h"
+
+namespace ctmap {
+namespace {
+
+/// How a vertex moves: x = c + P y with y its `n` unknowns (n = 0: fixed at c; n = 1: along the
+/// direction P.col(0) from c; n = 2: freely, P = I, c = 0).
+struct Dof {
+    int first = -1, n = 0;
+    Vec2 c = Vec2::Zero(), dir = Vec2::Zero();
+    Vec2 column(int i) const { return n == 1 ? dir : Vec2(i == 0, i == 1); }
+};
+
+/// Sums over the faces in fixed chunks added in order: the same bits whatever the threads.
+template <class F>
+double chunked_sum(int n, bool parallel, F&& term) {
+    constexpr int kChunk = 4096;
+    const int chunks = (n + kChunk - 1) / kChunk;
+    std::vector<double> part(chunks, 0.0);
+    auto run = [&](int c) {
+        double s = 0;
+        const int end = std::min(n, (c + 1) * kChunk);
+        for (int i = c * kChunk; i < end; ++i) s += term(i);
+        part[c] = s;
+    };
+    if (parallel) tbb::parallel_for(0, chunks, run);
+    else for (int c = 0; c < chunks; ++c) run(c);
+    double s = 0;
+    for (double p : part) s += p;
+    return s;
+}
+
+template <class F>
+void for_faces(int n, bool parallel, F&& f) {
+    if (parallel) tbb::parallel_for(0, n, [&](int i) { f(i); });
+    else for (int i = 0; i < n; ++i) f(i);
+}
+
+/// One face's share of the Newton step: with J = U diag(s1, s2) V^T (U, V rotations; det J > 0),
+/// the energy density Psi = s1^2 + s2^2 + s1^-2 + s2^-2 has dPsi/dJ = U diag(Psi_1, Psi_2) V^T
+/// and a Hessian with respect to J whose eigenvectors are known in closed form (Smith, de Goes and
+/// Kim 2019, "Analytic eigensystems for isotropic distortion energies", 2D case): the scalings
+/// U diag(1, 0) V^T and U diag(0, 1) V^T with eigenvalues Psi_11 = 2 + 6 s1^-4 and
+/// Psi_22 = 2 + 6 s2^-4, the flip U [[0, 1], [1, 0]] V^T / sqrt 2 with
+/// 2 + 2 (s1^2 + s1 s2 + s2^2) / (s1 s2)^3 (always positive) and the twist
+/// U [[0, -1], [1, 0]] V^T / sqrt 2 with 2 - 2 (s1^-3 + s2^-3) / (s1 + s2), the only one that can
+/// be negative; it is clamped to 0, which makes the Hessian positive semi-definite.
+struct FaceNewton {
+    Mat2 mode[4] = {Mat2::Zero(), Mat2::Zero(), Mat2::Zero(), Mat2::Zero()};
+    double lambda[4] = {0, 0, 0, 0};
+    Mat2 dpsi = Mat2::Zero();
+};
+
+FaceNewton face_newton(const Mat2& J) {
+    Eigen::JacobiSVD<Mat2> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Mat2 U = svd.matrixU(), V = svd.matrixV();
+    if (U.determinant() < 0) {  // det J > 0: U and V are both reflections; make both rotations
+        U.col(1) *= -1;
+        V.col(1) *= -1;
+    }
+    const double s1 = std::max(svd.singularValues()[0], 1e-12), s2 = std::max(svd.singularValues()[1], 1e-12);
+    FaceNewton n;
+    const double r = 1 / std::sqrt(2.0);
+    Mat2 m[4];
+    m[0] << 1, 0, 0, 0;
+    m[1] << 0, 0, 0, 1;
+    m[2] << 0, r, r, 0;
+    m[3] << 0, -r, r, 0;
+    for (int i = 0; i < 4; ++i) n.mode[i] = U * m[i] * V.transpose();
+    n.lambda[0] = 2 + 6 / (s1 * s1 * s1 * s1);
+    n.lambda[1] = 2 + 6 / (s2 * s2 * s2 * s2);
+    n.lambda[2] = 2 + 2 * (s1 * s1 + s1 * s2 + s2 * s2) / std::pow(s1 * s2, 3);
+    n.lambda[3] = std::max(0.0, 2 - 2 * (1 / (s1 * s1 * s1) + 1 / (s2 * s2 * s2)) / (s1 + s2));
+    n.dpsi = U * Vec2(2 * s1 - 2 / (s1 * s1 * s1), 2 * s2 - 2 / (s2 * s2 * s2)).asDiagonal() * V.transpose();
+    return n;
+}
+
+}  // namespace
+
+IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<int>& fixed,
+                                  const IsometricOptions& o) {
+    const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+    if (int(uv.size()) != nv)
+        throw BadInput("", "optimise_isometric: " + std::to_string(uv.size()) + " UVs for " + std::to_string(nv) +
+                               " vertices");
+    IsometricStats stats;
+    if (nf == 0) {
+        stats.stop = "no free vertex";
+        return stats;
+    }
+    std::vector<char> is_fixed(nv, 0);
+    for (int v : fixed) {
+        if (v < 0 || v >= nv)
+            throw BadInput("", "optimise_isometric: fixed vertex " + std::to_string(v) + " is out of range");
+        is_fixed[v] = 1;
+    }
+    // The map's orientation, and the precondition that it is valid.
+    int sigma = 0;
+    for (int f = 0; f < nf; ++f) {
+        const Tri& t = mesh.faces[f];
+        const int s = orientation_2d(uv[t[0]], uv[t[1]], uv[t[2]]);
+        if (sigma == 0) sigma = s;
+        if (s == 0 || s != sigma)
+            throw BadInput("", "optimise_isometric: the map is not valid on entry (UV triangle " + std::to_string(f) +
+                                   " is " + (s == 0 ? "degenerate" : "flipped") + ")");
+    }
+
+    // Frames of the mesh scaled to the map's UV area (mirrored for a clockwise map, so that
+    // every Jacobian has a positive determinant).
+    double area3 = 0, area2 = 0;
+    for (const Tri& t : mesh.faces) {
+        area3 += face_frame(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]).area;
+        const Vec2 q1 = uv[t[1]] - uv[t[0]], q2 = uv[t[2]] - uv[t[0]];
+        area2 += 0.5 * std::abs(q1.x() * q2.y() - q1.y() * q2.x());
+    }
+    if (!(area3 > 0) || !(area2 > 0) || !std::isfinite(area3)) {
+        stats.stop = "no free vertex";
+        return stats;
+    }
+    const double k = std::sqrt(area2 / area3);
+    std::vector<FaceFrame> frame(nf);
+    double area_sum = 0;
+    for (int f = 0; f < nf; ++f) {
+        const Tri& t = mesh.faces[f];
+        frame[f] = face_frame(k * mesh.positions[t[0]], k * mesh.positions[t[1]], k * mesh.positions[t[2]], sigma < 0);
+        area_sum += frame[f].area;
+    }
+    auto energy_of = [&](const std::vector<Vec2>& x) {
+        return chunked_sum(nf, o.parallel, [&](int f) {
+                   const FaceFrame& F = frame[f];
+                   if (F.area == 0) return 0.0;
+                   const Tri& t = mesh.faces[f];
+                   return F.area * symmetric_dirichlet_density(face_jacobian(F, x[t[0]], x[t[1]], x[t[2]]));
+               }) /
+               area_sum;
+    };
+
+    // Unknowns per vertex.
+    const std::vector<int> loop = border_loop(mesh);
+    std::vector<char> used(nv, 0), on_border(nv, 0);
+    for (const Tri& t : mesh.faces)
+        for (int v : t) used[v] = 1;
+    for (int v : loop) on_border[v] = 1;
+    // The image rectangle (widened to hold the starting map).
+    const double inf = std::numeric_limits<double>::infinity();
+    Vec2 box_lo = o.keep_in_box ? o.box_lo : Vec2(-inf, -inf), box_hi = o.keep_in_box ? o.box_hi : Vec2(inf, inf);
+    for (int v : loop) box_lo = box_lo.cwiseMin(uv[v]), box_hi = box_hi.cwiseMax(uv[v]);
+    auto on_wall = [&](const Vec2& p) {
+        return p.x() <= box_lo.x() || p.x() >= box_hi.x() || p.y() <= box_lo.y() || p.y() >= box_hi.y();
+    };
+    std::vector<Dof> dof(nv);
+    for (int v = 0; v < nv; ++v) {
+        dof[v].c = uv[v];
+        if (!used[v] || is_fixed[v]) continue;
+        if (on_border[v] && o.border == BorderMode::fixed) continue;  // set below
+        // A free border vertex already on the rectangle's edge (a side of the image's own
+        // border) stays there: the barrier below would be infinite for it.
+        if (on_border[v] && on_wall(uv[v])) continue;
+        dof[v].n = 2;
+        dof[v].c = Vec2::Zero();
+    }
+    if (o.border == BorderMode::fixed) {
+        // Each side runs from one fixed border vertex to the next along the loop.
+        const int n = int(loop.size());
+        int start = -1;
+        for (int i = 0; i < n && start < 0; ++i)
+            if (is_fixed[loop[i]]) start = i;
+        if (start >= 0)
+            for (int s = 0; s < n;) {
+                const int a = loop[(start + s) % n];
+                int e = s + 1;
+                while (e < n && !is_fixed[loop[(start + e) % n]]) ++e;
+                const int b = loop[(start + e) % n];
+                const Vec2 dir = uv[b] - uv[a];
+                for (int i = s + 1; i < e; ++i) {
+                    Dof& d = dof[loop[(start + i) % n]];
+                    if (!(dir.squaredNorm() > 0)) continue;  // stays fixed
+                    d.n = 1;
+                    d.c = uv[a];
+                    d.dir = dir;
+                }
+                s = e;
+            }
+    }
+    int unknowns = 0;
+    for (int v = 0; v < nv; ++v) {
+        if (dof[v].n == 0) continue;
+        dof[v].first = unknowns;
+        unknowns += dof[v].n;
+        if (dof[v].n == 2) ++stats.free_vertices;
+        else ++stats.sliding_vertices;
+    }
+    // The free border's barrier (Smith & Schaefer 2015, §5, for the rectangle's four walls): for
+    // a free border vertex at distance x < eps from a wall, w_v (eps / x - 1)^2, zero beyond eps
+    // and infinite at the wall, with eps a tenth of the mean UV border edge and w_v the vertex's share of
+    // the energy (4 x its third of the area of its faces, over the whole area). It keeps the
+    // border in the image without stopping the descent the way clamping would.
+    std::vector<double> barrier_weight(nv, 0.0);
+    double eps = 0;
+    for (std::size_t i = 0; i < loop.size(); ++i) eps += (uv[loop[i]] - uv[loop[(i + 1) % loop.size()]]).norm();
+    if (!loop.empty()) eps /= 10.0 * double(loop.size());
+    if (o.border == BorderMode::free)
+        for (int f = 0; f < nf; ++f)
+            for (int v : mesh.faces[f])
+                if (on_border[v] && dof[v].n == 2) barrier_weight[v] += 4 * frame[f].area / 3 / area_sum;
+    std::vector<int> barrier_vertices;
+    for (int v : loop)
+        if (barrier_weight[v] > 0) barrier_vertices.push_back(v);
+    // Per wall distance x: value, first and second derivative of (eps / x - 1)^2 for x < eps.
+    auto wall = [&](double x, double& phi, double& d1, double& d2) {
+        phi = d1 = d2 = 0;
+        if (!(x < eps)) return;
+        if (!(x > 0)) {
+            phi = std::numeric_limits<double>::infinity();
+            return;
+        }
+        const double g = eps / x - 1, g1 = -eps / (x * x), g2 = 2 * eps / (x * x * x);
+        phi = g * g;
+        d1 = 2 * g * g1;
+        d2 = 2 * g1 * g1 + 2 * g * g2;
+    };
+    // Calls f(vertex, axis, sign, distance) for each wall of each barrier vertex.
+    auto for_walls = [&](const std::vector<Vec2>& x, auto&& f) {
+        for (int v : barrier_vertices)
+            for (int c = 0; c < 2; ++c) {
+                f(v, c, +1.0, x[v][c] - box_lo[c]);
+                f(v, c, -1.0, box_hi[c] - x[v][c]);
+            }
+    };
+    auto barrier_of = [&](const std::vector<Vec2>& x) {
+        double b = 0;
+        for_walls(x, [&](int v, int, double, double dist) {
+            double phi, d1, d2;
+            wall(dist, phi, d1, d2);
+            b += barrier_weight[v] * phi;
+        });
+        return b;
+    };
+    stats.energy.push_back(energy_of(uv));
+    double objective = stats.energy.back() + barrier_of(uv);
+    if (unknowns == 0) {
+        stats.stop = "no free vertex";
+        stats.converged = true;
+        return stats;
+    }
+
+    // The system's pattern (lower triangle), once, and where each face's entries go in it.
+    Eigen::SparseMatrix<double> K(unknowns, unknowns);
+    std::vector<int> entry;  // per face, per (k, l, i, j) with row >= col, in loop order: index into K's values
+    std::vector<int> diag(unknowns, -1);
+    {
+        std::vector<Eigen::Triplet<double>> trip;
+        trip.reserve(std::size_t(nf) * 21);
+        for (const Tri& t : mesh.faces)
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b)
+                    for (int i = 0; i < dof[t[a]].n; ++i)
+                        for (int j = 0; j < dof[t[b]].n; ++j) {
+                            const int r = dof[t[a]].first + i, c = dof[t[b]].first + j;
+                            if (r >= c) trip.emplace_back(r, c, 0.0);
+                        }
+        K.setFromTriplets(trip.begin(), trip.end());
+        K.makeCompressed();
+        entry.reserve(trip.size());
+        const int* outer = K.outerIndexPtr();
+        const int* inner = K.innerIndexPtr();
+        for (const auto& e : trip) {
+            const int* p = std::lower_bound(inner + outer[e.col()], inner + outer[e.col() + 1], e.row());
+            entry.push_back(int(p - inner));
+        }
+        for (int c = 0; c < unknowns; ++c)
+            diag[c] = int(std::lower_bound(inner + outer[c], inner + outer[c + 1], c) - inner);
+    }
+    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+    solver.analyzePattern(K);
+
+    const BorderGuard guard(loop, box_lo, box_hi);
+
+    // Per face: the singular vectors and values of J and the four eigenvalues of the energy's
+    // Hessian with respect to J, projected to be non-negative (face_newton below).
+    std::vector<FaceNewton> local(nf);
+    std::vector<Vec2> d(nv), trial(nv);
+    Eigen::VectorXd rhs(unknowns), y(unknowns);
+
+    stats.stop = "iterations";
+    for (int it = 0; it < o.max_iterations; ++it) {
+        const double e0 = objective;
+        for_faces(nf, o.parallel, [&](int f) {
+            const FaceFrame& F = frame[f];
+            if (F.area == 0) return;
+            const Tri& t = mesh.faces[f];
+            local[f] = face_newton(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]]));
+        });
+        // The Newton system in the unknowns: per face, the blocks A sum_i lambda_i (E_i g_k)(E_i g_l)^T
+        // of the projected Hessian and the gradient A dPsi/dJ g_k.
+        std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
+        rhs.setZero();
+        std::size_t next = 0;
+        for (int f = 0; f < nf; ++f) {
+            const Tri& t = mesh.faces[f];
+            const FaceFrame& F = frame[f];
+            Vec2 g[3];
+            face_gradients(F, g);
+            const FaceNewton& L = local[f];
+            Vec2 eg[4][3];  // E_i g_k
+            for (int i = 0; i < 4; ++i)
+                for (int k = 0; k < 3; ++k) eg[i][k] = L.mode[i] * g[k];
+            for (int a = 0; a < 3; ++a) {
+                const Dof& da = dof[t[a]];
+                for (int b = 0; b < 3; ++b) {
+                    const Dof& db = dof[t[b]];
+                    Mat2 H = Mat2::Zero();
+                    if (F.area > 0)
+                        for (int i = 0; i < 4; ++i) H += (F.area * L.lambda[i]) * eg[i][a] * eg[i][b].transpose();
+                    for (int i = 0; i < da.n; ++i)
+                        for (int j = 0; j < db.n; ++j) {
+                            const int r = da.first + i, c = db.first + j;
+                            if (r < c) continue;
+                            K.valuePtr()[entry[next++]] += da.column(i).dot(H * db.column(j));
+                        }
+                }
+                if (da.n > 0 && F.area > 0) {
+                    const Vec2 grad = F.area * (L.dpsi * g[a]);
+                    for (int i = 0; i < da.n; ++i) rhs[da.first + i] -= da.column(i).dot(grad);
+                }
+            }
+        }
+        // The barrier's Newton terms: dx = sign * dist, so the gradient is w phi' sign and the
+        // Hessian w phi'' on the vertex's own coordinate.
+        for_walls(uv, [&](int v, int c, double sign, double dist) {
+            double phi, d1, d2;
+            wall(dist, phi, d1, d2);
+            if (d2 == 0 && d1 == 0) return;
+            const int r = dof[v].first + c;
+            rhs[r] -= barrier_weight[v] * d1 * sign;
+            K.valuePtr()[diag[r]] += barrier_weight[v] * d2;
+        });
+        // A whisper of regularisation keeps the system definite where zero-area faces leave a
+        // vertex without energy and where the projected Hessian is only semi-definite.
+        double trace = 0;
+        for (int c = 0; c < unknowns; ++c) trace += K.valuePtr()[diag[c]];
+        const double eps = 1e-10 * trace / unknowns;
+        for (int c = 0; c < unknowns; ++c) K.valuePtr()[diag[c]] += eps;
+        solver.factorize(K);
+        if (solver.info() != Eigen::Success) {
+            stats.stop = "no descent step";
+            break;
+        }
+        y = solver.solve(rhs);
+        for (int v = 0; v < nv; ++v) {
+            const Dof& dv = dof[v];
+            if (dv.n == 0) {
+                d[v] = Vec2::Zero();
+                continue;
+            }
+            Vec2 x = uv[v] + (dv.n == 2 ? Vec2(y[dv.first], y[dv.first + 1]) : Vec2(y[dv.first] * dv.dir));
+            // The solve knows nothing of the image rectangle: a free vertex's goal is clamped
+            // into it, so that the whole segment of its move stays inside (the rectangle is
+            // convex and holds the vertex now) and vertices at its edge slide along it.
+            if (dv.n == 2) x = x.cwiseMax(box_lo).cwiseMin(box_hi);
+            d[v] = x - uv[v];
+        }
+        // Line search: from 0.9 of the flip-free step (or the whole step), halving until the
+        // energy drops and the exact predicates and the border guard accept the map.
+        double step = std::min(1.0, 0.9 * max_flip_free_step(mesh.faces, uv, d, sigma, o.parallel));
+        bool accepted = false;
+        double e1 = e0, sd1 = 0;
+        for (int h = 0; h < 60 && step > 0; ++h, step *= 0.5) {
+            if (h > 0) ++stats.halvings;
+            for (int v = 0; v < nv; ++v) trial[v] = dof[v].n == 0 ? uv[v] : Vec2(uv[v] + step * d[v]);
+            sd1 = energy_of(trial);
+            e1 = sd1 + barrier_of(trial);
+            if (!(e1 < e0)) continue;
+            std::atomic<bool> exact_ok{true};
+            for_faces(nf, o.parallel, [&](int f) {
+                if (!exact_ok.load(std::memory_order_relaxed)) return;
+                const Tri& t = mesh.faces[f];
+                if (orientation_2d(trial[t[0]], trial[t[1]], trial[t[2]]) != sigma) exact_ok = false;
+            });
+            if (!exact_ok) {
+                ++stats.exact_rejections;
+                continue;
+            }
+            if (!guard.ok(trial)) {
+                ++stats.border_rejections;
+                continue;
+            }
+            accepted = true;
+            break;
+        }
+        if (!accepted) {
+            stats.stop = "no descent step";
+            stats.converged = true;
+            break;
+        }
+        uv.swap(trial);
+        objective = e1;
+        stats.energy.push_back(sd1);
+        stats.iterations = it + 1;
+        if (o.on_iteration) o.on_iteration(stats.iterations, uv, sd1);
+        if ((e0 - e1) < o.tolerance * e0) {
+            stats.stop = "tolerance";
+            stats.converged = true;
+            break;
+        }
+    }
+    return stats;
+}
+
+}  // namespace ctmap

@@ -1,0 +1,67 @@
+#pragma once
+/// \file isometric.h
+/// The distortion optimiser (beyond paper §2.4): starting from a valid map (the paper's
+/// relaxation), it minimises the symmetric Dirichlet energy with every feature fixed at its exact
+/// UV, and every iterate is a valid map. Each iteration is a SLIM step (Rabinovich et al. 2017):
+/// a local step fits each face's Jacobian with the closest rotation and the energy's weights, a
+/// global step solves one sparse symmetric positive definite system (CHOLMOD, supernodal Cholesky;
+/// the symbolic analysis is done once), and a line search walks towards the solution, never past
+/// the largest flip-free step (flip_free_step.h), taking a step only if it lowers the energy, the
+/// exact orientation predicates agree on every triangle and the border guard accepts it.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ctmap/mesh.h"
+
+namespace ctmap {
+
+/// What the border vertices (those that are not features) may do.
+enum class BorderMode {
+    free,   ///< move anywhere, the UV border staying simple and inside the image rectangle
+    fixed,  ///< slide along the straight side between their two border features
+};
+
+/// Options of `optimise_isometric`.
+struct IsometricOptions {
+    int max_iterations = 1000;  ///< iteration cap (`--iterations`)
+    /// Stop when an iteration lowers the energy by less than this fraction of it.
+    double tolerance = 1e-4;
+    BorderMode border = BorderMode::free;
+    /// The rectangle the free border stays in: the image, [0, 1]^2 in UV (widened to hold the
+    /// starting map if that reaches outside).
+    Vec2 box_lo{0, 0}, box_hi{1, 1};
+    /// Keep the free border in that rectangle; off (`--border-mode unbounded`), only simple.
+    bool keep_in_box = true;
+    bool parallel = true;  ///< per-face work with TBB (the result is the same bit for bit either way)
+    /// Called after every accepted iteration with the map and its energy (tests certify each iterate).
+    std::function<void(int iteration, const std::vector<Vec2>& uv, double energy)> on_iteration;
+};
+
+/// What `optimise_isometric` did.
+struct IsometricStats {
+    int iterations = 0;           ///< accepted iterations
+    std::vector<double> energy;   ///< energy[0] on entry, energy[i] after iteration i
+    bool converged = false;       ///< stopped by the tolerance (or at a point no step can improve)
+    std::string stop;             ///< "tolerance", "iterations", "no descent step", "no free vertex"
+    long halvings = 0;            ///< line-search step halvings in all
+    long exact_rejections = 0;    ///< trial steps the floating-point test passed and the exact predicates refused
+    long border_rejections = 0;   ///< trial steps the border guard refused
+    int free_vertices = 0;        ///< vertices that move in the plane
+    int sliding_vertices = 0;     ///< border vertices that slide along a side (fixed border)
+    double energy_before() const { return energy.empty() ? 0 : energy.front(); }
+    double energy_after() const { return energy.empty() ? 0 : energy.back(); }
+};
+
+/// Minimises the symmetric Dirichlet energy of the per-vertex map `uv` of `mesh` with the
+/// vertices `fixed` held bitwise where they are. The energy is the area-weighted mean of
+/// |J|^2 + |J^-1|^2 over the faces (4 for an isometry), the mesh scaled so that its area is the
+/// map's UV area on entry (the certificate's normalisation, held fixed while the map moves).
+/// \pre uv.size() == mesh.num_vertices(); `mesh` is a manifold disc with its border loop; the map
+///      is valid (every triangle of one nonzero orientation, exactly; the border simple).
+/// \throw BadInput if the sizes do not match, a fixed vertex is out of range or the map is not
+///        valid on entry.
+IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<int>& fixed,
+                                  const IsometricOptions& options = {});
+
+}  // namespace ctmap
