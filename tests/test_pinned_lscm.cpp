@@ -199,7 +199,9 @@ void run_plan(const Plan& plan, std::uint32_t seed) {
 
         const std::vector<MapFeature> features = map_features_of(rf);
         try {
-            const MapResult r = map_texture(mesh, features);
+            MapOptions opt;  // the contrast is about validity: the paper's refinement is enough (and quick)
+            opt.refine_mode = RefineMode::paper;
+            const MapResult r = map_texture(mesh, features, opt);
             // The written map, certified again from scratch by the same exact predicates.
             const Certificate cert = certify(r.textured(), r.cut.feature_vertex, r.feature_uv, {false});
             EXPECT_TRUE(cert.valid) << what;

@@ -58,6 +58,7 @@ nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
                           {"energy", energy},
                           {"converged", o.converged},
                           {"stop", o.stop},
+                          {"factorisations", o.factorisations},
                           {"halvings", o.halvings},
                           {"exact_rejections", o.exact_rejections},
                           {"border_rejections", o.border_rejections},

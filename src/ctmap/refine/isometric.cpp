@@ -300,7 +300,14 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     Eigen::VectorXd rhs(unknowns), y(unknowns);
 
     stats.stop = "iterations";
-    for (int it = 0; it < o.max_iterations; ++it) {
+    // The Hessian is refactorised when the last step with it gained less than half of what the
+    // first step with it did (or after a few steps, or when its step fails); in between, the
+    // gradient is new and the factorisation is reused, which is a descent direction still (the
+    // stale Hessian is positive definite) and costs a solve instead of a factorisation.
+    bool refresh = true;
+    int stale = 0;
+    double fresh_gain = 0;
+    for (int it = 0; it < o.max_iterations;) {
         const double e0 = objective;
         for_faces(nf, o.parallel, [&](int f) {
             const FaceFrame& F = frame[f];
@@ -310,7 +317,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         });
         // The Newton system in the unknowns: per face, the blocks A sum_i lambda_i (E_i g_k)(E_i g_l)^T
         // of the projected Hessian and the gradient A dPsi/dJ g_k.
-        std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
+        if (refresh) std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
         rhs.setZero();
         std::size_t next = 0;
         for (int f = 0; f < nf; ++f) {
@@ -326,6 +333,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
                 const Dof& da = dof[t[a]];
                 for (int b = 0; b < 3; ++b) {
                     const Dof& db = dof[t[b]];
+                    if (!refresh) continue;
                     Mat2 H = Mat2::Zero();
                     if (F.area > 0)
                         for (int i = 0; i < 4; ++i) H += (F.area * L.lambda[i]) * eg[i][a] * eg[i][b].transpose();
@@ -350,18 +358,21 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             if (d2 == 0 && d1 == 0) return;
             const int r = dof[v].first + c;
             rhs[r] -= barrier_weight[v] * d1 * sign;
-            K.valuePtr()[diag[r]] += barrier_weight[v] * d2;
+            if (refresh) K.valuePtr()[diag[r]] += barrier_weight[v] * d2;
         });
         // A whisper of regularisation keeps the system definite where zero-area faces leave a
         // vertex without energy and where the projected Hessian is only semi-definite.
-        double trace = 0;
-        for (int c = 0; c < unknowns; ++c) trace += K.valuePtr()[diag[c]];
-        const double eps = 1e-10 * trace / unknowns;
-        for (int c = 0; c < unknowns; ++c) K.valuePtr()[diag[c]] += eps;
-        solver.factorize(K);
-        if (solver.info() != Eigen::Success) {
-            stats.stop = "no descent step";
-            break;
+        if (refresh) {
+            double trace = 0;
+            for (int c = 0; c < unknowns; ++c) trace += K.valuePtr()[diag[c]];
+            const double eps = 1e-10 * trace / unknowns;
+            for (int c = 0; c < unknowns; ++c) K.valuePtr()[diag[c]] += eps;
+            solver.factorize(K);
+            ++stats.factorisations;
+            if (solver.info() != Eigen::Success) {
+                stats.stop = "no descent step";
+                break;
+            }
         }
         y = solver.solve(rhs);
         for (int v = 0; v < nv; ++v) {
@@ -398,7 +409,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
                 ++stats.exact_rejections;
                 continue;
             }
-            if (!guard.ok(trial)) {
+            if (o.check_border ? !guard.ok(trial) : !guard.inside(trial)) {
                 ++stats.border_rejections;
                 continue;
             }
@@ -406,6 +417,10 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             break;
         }
         if (!accepted) {
+            if (!refresh) {  // the stale Hessian's step failed: try again with a new one
+                refresh = true;
+                continue;
+            }
             stats.stop = "no descent step";
             stats.converged = true;
             break;
@@ -413,13 +428,18 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         uv.swap(trial);
         objective = e1;
         stats.energy.push_back(sd1);
-        stats.iterations = it + 1;
+        stats.iterations = ++it;
         if (o.on_iteration) o.on_iteration(stats.iterations, uv, sd1);
-        if ((e0 - e1) < o.tolerance * e0) {
+        const double gain = e0 - e1;
+        const bool small = gain < o.tolerance * e0;
+        if (small && refresh) {  // only a step with a new Hessian decides convergence
             stats.stop = "tolerance";
             stats.converged = true;
             break;
         }
+        if (refresh) fresh_gain = gain, stale = 0;
+        else ++stale;
+        refresh = !o.reuse_hessian || small || gain < 0.5 * fresh_gain || stale >= 4;
     }
     return stats;
 }

@@ -31,8 +31,15 @@ struct IsometricOptions {
     /// The rectangle the free border stays in: the image, [0, 1]^2 in UV (widened to hold the
     /// starting map if that reaches outside).
     Vec2 box_lo{0, 0}, box_hi{1, 1};
+    /// Check that the UV border stays simple (border_guard.h). Only tests switch it off, to show
+    /// what it prevents.
+    bool check_border = true;
     /// Keep the free border in that rectangle; off (`--border-mode unbounded`), only simple.
     bool keep_in_box = true;
+    /// Reuse the Hessian's factorisation for the next steps while they gain at least half of
+    /// what the first step with it gained (at most 4 reuses): most iterations then cost a solve
+    /// instead of a factorisation. Off: a new Hessian every iteration (plain projected Newton).
+    bool reuse_hessian = true;
     bool parallel = true;  ///< per-face work with TBB (the result is the same bit for bit either way)
     /// Called after every accepted iteration with the map and its energy (tests certify each iterate).
     std::function<void(int iteration, const std::vector<Vec2>& uv, double energy)> on_iteration;
@@ -44,6 +51,7 @@ struct IsometricStats {
     std::vector<double> energy;   ///< energy[0] on entry, energy[i] after iteration i
     bool converged = false;       ///< stopped by the tolerance (or at a point no step can improve)
     std::string stop;             ///< "tolerance", "iterations", "no descent step", "no free vertex"
+    int factorisations = 0;       ///< numeric Cholesky factorisations (the dominant cost)
     long halvings = 0;            ///< line-search step halvings in all
     long exact_rejections = 0;    ///< trial steps the floating-point test passed and the exact predicates refused
     long border_rejections = 0;   ///< trial steps the border guard refused
