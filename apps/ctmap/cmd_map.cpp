@@ -143,6 +143,7 @@ MapRun run_map(const MapArgs& a) {
     options.isometric.border = a.border_mode == "fixed" ? BorderMode::fixed : BorderMode::free;
     options.isometric.keep_in_box = a.border_mode != "unbounded";
     options.isometric.max_iterations = a.iterations;
+    options.isometric.tolerance = a.tolerance;
     options.snap = a.snap;
     Progress progress(!a.quiet, isatty(fileno(stderr)));
     options.progress = [&](const std::string& stage, int done, int total) { progress(stage, done, total); };
@@ -250,6 +251,9 @@ Command add_map_command(CLI::App& app) {
     sub->add_option("--iterations", args->iterations,
                     "the optimiser's iteration cap (default 1000; it stops earlier when converged)")
         ->check(CLI::Range(0, 1000000));
+    sub->add_option("--tolerance", args->tolerance,
+                    "the optimiser stops when an iteration lowers the energy by less than this fraction (default 1e-4)")
+        ->check(CLI::Range(0.0, 1.0));
     sub->add_option("--snap", args->snap,
                     "how far a 3D \"point\" feature may lie off the surface, in the mesh's units (default 1e-4 of "
                     "the bounding-box diagonal); it is placed at the closest point of the surface")
