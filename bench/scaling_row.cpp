@@ -91,6 +91,9 @@ int main(int argc, char** argv) {
         else if (a == "--energy-tolerance" && i + 1 < argc) energy_tolerance = std::stod(argv[++i]);
         else if (a == "--over-relaxation" && i + 1 < argc) over_relaxation = std::stod(argv[++i]);
     }
+    bool isometric = false;  // --isometric: also one run of the whole pipeline with --refine isometric
+    for (int i = 2; i < argc; ++i)
+        if (std::string(argv[i]) == "--isometric") isometric = true;
     if (cgal_runs < 0) cgal_runs = runs;
     const bool with_cgal = cgal_runs > 0;
     try {
