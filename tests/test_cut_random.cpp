@@ -84,7 +84,9 @@ Totals run_plan(const Plan& plan, std::uint32_t seed) {
         if (c % plan.isometric_every == 0 && !r.isometric_stats.energy.empty()) {
             const IsometricStats& is = r.isometric_stats;
             EXPECT_LE(is.energy_after(), is.energy_before()) << what;
-            EXPECT_TRUE(is.converged || is.iterations == MapOptions().isometric.max_iterations) << what << ": " << is.stop;
+            // Converged, or stopped for a reason the report names (BENCHMARKS.md counts them).
+            EXPECT_TRUE(is.converged || is.stop == "iterations" || is.stop == "border contact" || is.stop == "no descent step")
+                << what << ": " << is.stop;
         }
         t.valid += cert.valid;
         t.fired_cases += r.cut_stats.fallback_fired > 0;

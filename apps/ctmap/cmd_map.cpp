@@ -252,7 +252,8 @@ Command add_map_command(CLI::App& app) {
                     "the optimiser's iteration cap (default 1000; it stops earlier when converged)")
         ->check(CLI::Range(0, 1000000));
     sub->add_option("--tolerance", args->tolerance,
-                    "the optimiser stops when an iteration lowers the energy by less than this fraction (default 1e-4)")
+                    "the optimiser stops when a Newton step is predicted to lower the energy by less than this "
+                    "fraction of it (default 1e-6)")
         ->check(CLI::Range(0.0, 1.0));
     sub->add_option("--snap", args->snap,
                     "how far a 3D \"point\" feature may lie off the surface, in the mesh's units (default 1e-4 of "

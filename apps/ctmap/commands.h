@@ -29,7 +29,7 @@ struct MapArgs {
     std::string refine_mode = "isometric";  ///< --refine paper|isometric
     std::string border_mode = "free";       ///< --border-mode free|fixed
     int iterations = 1000;                  ///< --iterations: the optimiser's cap
-    double tolerance = 1e-4;                ///< --tolerance: the optimiser's relative energy change
+    double tolerance = 1e-6;                ///< --tolerance: the optimiser's Newton decrement, relative
     bool quiet = false;
     bool copy_image = false;  ///< --copy-image: the image beside the OBJ
 };

@@ -154,8 +154,13 @@ Distortion measure_distortion(const TexturedMesh& tm) {
     return d;
 }
 
-int count_border_crossings(const std::vector<Vec2>& pos, const std::vector<std::array<int, 2>>& border) {
+int count_border_crossings(const std::vector<Vec2>& pos, const std::vector<std::array<int, 2>>& border,
+                           std::vector<std::array<int, 2>>* pairs) {
     int crossings = 0;
+    auto cross = [&](std::size_t e, std::size_t g) {
+        ++crossings;
+        if (pairs) pairs->push_back({int(e), int(g)});
+    };
     using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
     std::vector<Box> boxes;
     boxes.reserve(border.size());
@@ -178,19 +183,19 @@ int count_border_crossings(const std::vector<Vec2>& pos, const std::vector<std::
                     ga = g[1 - j];
                 }
         if (shared < 0) {
-            if (segments_intersect_2d(pos[e[0]], pos[e[1]], pos[g[0]], pos[g[1]])) ++crossings;
+            if (segments_intersect_2d(pos[e[0]], pos[e[1]], pos[g[0]], pos[g[1]])) cross(x.info(), y.info());
             return;
         }
         // Neighbours along the border meet at their shared end; they must not overlap beyond it
         // (collinear and pointing the same way), and neither may have zero length.
         const Vec2 &s = pos[shared], &p = pos[ea], &q = pos[ga];
         if (p == s || q == s) {
-            ++crossings;
+            cross(x.info(), y.info());
             return;
         }
         if (orientation_2d(s, p, q) == 0 && sign_of(p.x() - s.x()) == sign_of(q.x() - s.x()) &&
             sign_of(p.y() - s.y()) == sign_of(q.y() - s.y()))
-            ++crossings;
+            cross(x.info(), y.info());
     });
     return crossings;
 }

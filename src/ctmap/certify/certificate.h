@@ -46,8 +46,10 @@ struct Distortion {
 /// where they must not: two edges sharing no end that meet, neighbours sharing an end that
 /// overlap beyond it (collinear, pointing the same way), and edges of zero length. Exact
 /// predicates after a box-intersection filter, O(n log n). 0 means the border is simple, given
-/// that no vertex has more than two border edges (the caller checks that).
-int count_border_crossings(const std::vector<Vec2>& pos, const std::vector<std::array<int, 2>>& border);
+/// that no vertex has more than two border edges (the caller checks that). With `pairs`, the
+/// indices (into `border`) of each offending pair are appended to it.
+int count_border_crossings(const std::vector<Vec2>& pos, const std::vector<std::array<int, 2>>& border,
+                           std::vector<std::array<int, 2>>* pairs = nullptr);
 
 /// The certificate of one map.
 struct Certificate {

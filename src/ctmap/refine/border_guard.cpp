@@ -21,4 +21,13 @@ bool BorderGuard::ok(const std::vector<Vec2>& uv) const {
     return inside(uv) && (edges_.size() < 3 || count_border_crossings(uv, edges_) == 0);
 }
 
+std::vector<int> BorderGuard::crossing_vertices(const std::vector<Vec2>& uv) const {
+    std::vector<std::array<int, 2>> pairs;
+    if (edges_.size() >= 3) count_border_crossings(uv, edges_, &pairs);
+    std::vector<int> out;
+    for (const auto& p : pairs)
+        for (int e : p) out.insert(out.end(), {edges_[e][0], edges_[e][1]});
+    return out;
+}
+
 }  // namespace ctmap

@@ -24,6 +24,9 @@ public:
     /// Whether every border vertex of `uv` lies in the rectangle. O(B).
     bool inside(const std::vector<Vec2>& uv) const;
 
+    /// The vertices of the border edges that cross or touch another where they must not.
+    std::vector<int> crossing_vertices(const std::vector<Vec2>& uv) const;
+
     const std::vector<int>& loop() const { return loop_; }
 
 private:

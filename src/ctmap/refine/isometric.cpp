@@ -3,6 +3,7 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/SVD>
 #include <Eigen/SparseCore>
+#include <dlfcn.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -53,6 +54,15 @@ void for_faces(int n, bool parallel, F&& f) {
     else for (int i = 0; i < n; ++i) f(i);
 }
 
+/// CHOLMOD's supernodal factorisation calls BLAS; a threaded OpenBLAS (Debian's
+/// libopenblas0-pthread behind libblas.so.3) would make the result depend on its thread count and
+/// compete with TBB for the cores. One BLAS thread, if the BLAS is OpenBLAS (looked up at run time:
+/// the reference BLAS has no such function).
+void single_threaded_blas() {
+    using SetThreads = void (*)(int);
+    if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+}
+
 /// One face's share of the Newton step: with J = U diag(s1, s2) V^T (U, V rotations; det J > 0),
 /// the energy density Psi = s1^2 + s2^2 + s1^-2 + s2^-2 has dPsi/dJ = U diag(Psi_1, Psi_2) V^T
 /// and a Hessian with respect to J whose eigenvectors are known in closed form (Smith, de Goes and
@@ -71,11 +81,13 @@ struct FaceNewton {
 FaceNewton face_newton(const Mat2& J) {
     Eigen::JacobiSVD<Mat2> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
     Mat2 U = svd.matrixU(), V = svd.matrixV();
-    if (U.determinant() < 0) {  // det J > 0: U and V are both reflections; make both rotations
-        U.col(1) *= -1;
-        V.col(1) *= -1;
-    }
-    const double s1 = std::max(svd.singularValues()[0], 1e-12), s2 = std::max(svd.singularValues()[1], 1e-12);
+    double s1 = svd.singularValues()[0], s2 = svd.singularValues()[1];
+    if (U.determinant() < 0) U.col(1) *= -1, s2 = -s2;  // signed SVD: U and V rotations
+    if (V.determinant() < 0) V.col(1) *= -1, s2 = -s2;
+    // det J > 0 (the line search keeps it so) gives s2 > 0; a sliver whose determinant rounds to
+    // zero or below gets the smallest positive value, so that its terms push it open.
+    s1 = std::max(s1, 1e-12);
+    s2 = std::max(s2, 1e-12);
     FaceNewton n;
     const double r = 1 / std::sqrt(2.0);
     Mat2 m[4];
@@ -261,6 +273,10 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         return stats;
     }
 
+    if (o.max_iterations <= 0) {
+        stats.stop = "iterations";
+        return stats;
+    }
     // The system's pattern (lower triangle), once, and where each face's entries go in it.
     Eigen::SparseMatrix<double> K(unknowns, unknowns);
     std::vector<int> entry;  // per face, per (k, l, i, j) with row >= col, in loop order: index into K's values
@@ -288,6 +304,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         for (int c = 0; c < unknowns; ++c)
             diag[c] = int(std::lower_bound(inner + outer[c], inner + outer[c + 1], c) - inner);
     }
+    single_threaded_blas();
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
     solver.analyzePattern(K);
 
@@ -336,7 +353,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
                     if (!refresh) continue;
                     Mat2 H = Mat2::Zero();
                     if (F.area > 0)
-                        for (int i = 0; i < 4; ++i) H += (F.area * L.lambda[i]) * eg[i][a] * eg[i][b].transpose();
+                        for (int i = 0; i < 4; ++i) H += (F.area / area_sum * L.lambda[i]) * eg[i][a] * eg[i][b].transpose();
                     for (int i = 0; i < da.n; ++i)
                         for (int j = 0; j < db.n; ++j) {
                             const int r = da.first + i, c = db.first + j;
@@ -345,7 +362,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
                         }
                 }
                 if (da.n > 0 && F.area > 0) {
-                    const Vec2 grad = F.area * (L.dpsi * g[a]);
+                    const Vec2 grad = F.area / area_sum * (L.dpsi * g[a]);
                     for (int i = 0; i < da.n; ++i) rhs[da.first + i] -= da.column(i).dot(grad);
                 }
             }
@@ -365,8 +382,8 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         if (refresh) {
             double trace = 0;
             for (int c = 0; c < unknowns; ++c) trace += K.valuePtr()[diag[c]];
-            const double eps = 1e-10 * trace / unknowns;
-            for (int c = 0; c < unknowns; ++c) K.valuePtr()[diag[c]] += eps;
+            const double whisper = 1e-10 * trace / unknowns;
+            for (int c = 0; c < unknowns; ++c) K.valuePtr()[diag[c]] += whisper;
             solver.factorize(K);
             ++stats.factorisations;
             if (solver.info() != Eigen::Success) {
@@ -375,6 +392,11 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             }
         }
         y = solver.solve(rhs);
+        // The Newton decrement: the decrease the quadratic model predicts for the whole step. It
+        // decides convergence (on a new Hessian only): a step cut short by the flip-free bound or
+        // the line search may gain little far from the minimum, the model's prediction does not.
+        const double predicted = 0.5 * rhs.dot(y);
+        const bool model_converged = refresh && !(predicted >= o.tolerance * e0);
         for (int v = 0; v < nv; ++v) {
             const Dof& dv = dof[v];
             if (dv.n == 0) {
@@ -382,17 +404,21 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
                 continue;
             }
             Vec2 x = uv[v] + (dv.n == 2 ? Vec2(y[dv.first], y[dv.first + 1]) : Vec2(y[dv.first] * dv.dir));
-            // The solve knows nothing of the image rectangle: a free vertex's goal is clamped
-            // into it, so that the whole segment of its move stays inside (the rectangle is
-            // convex and holds the vertex now) and vertices at its edge slide along it.
+            // The barrier keeps free border vertices off the rectangle's edges; a goal beyond them
+            // is clamped into it all the same, so that the whole segment of the move stays
+            // inside (the rectangle is convex and holds the vertex now).
             if (dv.n == 2) x = x.cwiseMax(box_lo).cwiseMin(box_hi);
             d[v] = x - uv[v];
         }
         // Line search: from 0.9 of the flip-free step (or the whole step), halving until the
         // energy drops and the exact predicates and the border guard accept the map.
+        // Where the border guard refuses a step because two border edges would meet, the
+        // vertices of those edges are held where they are for this iteration and the search
+        // starts again (at most 8 times): a contact stops the border there, not the whole map.
         double step = std::min(1.0, 0.9 * max_flip_free_step(mesh.faces, uv, d, sigma, o.parallel));
         bool accepted = false;
         double e1 = e0, sd1 = 0;
+        int holds = 0;
         for (int h = 0; h < 60 && step > 0; ++h, step *= 0.5) {
             if (h > 0) ++stats.halvings;
             for (int v = 0; v < nv; ++v) trial[v] = dof[v].n == 0 ? uv[v] : Vec2(uv[v] + step * d[v]);
@@ -411,6 +437,18 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             }
             if (o.check_border ? !guard.ok(trial) : !guard.inside(trial)) {
                 ++stats.border_rejections;
+                if (o.check_border && holds < 8 && guard.inside(trial)) {
+                    const std::vector<int> touching = guard.crossing_vertices(trial);
+                    bool held = false;
+                    for (int v : touching)
+                        if (d[v] != Vec2::Zero()) d[v] = Vec2::Zero(), held = true;
+                    if (held) {
+                        ++holds;
+                        ++stats.border_holds;
+                        step = 2 * std::min(1.0, 0.9 * max_flip_free_step(mesh.faces, uv, d, sigma, o.parallel));
+                        h = -1;  // the loop's step halving and ++h bring it back to the new start
+                    }
+                }
                 continue;
             }
             accepted = true;
@@ -421,8 +459,8 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
                 refresh = true;
                 continue;
             }
-            stats.stop = "no descent step";
-            stats.converged = true;
+            stats.stop = model_converged ? "tolerance" : "no descent step";
+            stats.converged = model_converged;
             break;
         }
         uv.swap(trial);
@@ -432,9 +470,13 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         if (o.on_iteration) o.on_iteration(stats.iterations, uv, sd1);
         const double gain = e0 - e1;
         const bool small = gain < o.tolerance * e0;
-        if (small && refresh) {  // only a step with a new Hessian decides convergence
+        if (model_converged) {
             stats.stop = "tolerance";
             stats.converged = true;
+            break;
+        }
+        if (holds > 0 && small) {  // the border is in contact with itself and only creeps on
+            stats.stop = "border contact";
             break;
         }
         if (refresh) fresh_gain = gain, stale = 0;

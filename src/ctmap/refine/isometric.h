@@ -2,10 +2,11 @@
 /// \file isometric.h
 /// The distortion optimiser (beyond paper §2.4): starting from a valid map (the paper's
 /// relaxation), it minimises the symmetric Dirichlet energy with every feature fixed at its exact
-/// UV, and every iterate is a valid map. Each iteration is a SLIM step (Rabinovich et al. 2017):
-/// a local step fits each face's Jacobian with the closest rotation and the energy's weights, a
-/// global step solves one sparse symmetric positive definite system (CHOLMOD, supernodal Cholesky;
-/// the symbolic analysis is done once), and a line search walks towards the solution, never past
+/// UV, and every iterate is a valid map. Each iteration is a projected Newton step: per face, the
+/// energy's Hessian with respect to the Jacobian from its closed-form eigensystem (Smith, de Goes
+/// and Kim 2019) with its negative eigenvalue clamped; one sparse symmetric positive definite
+/// system (CHOLMOD, supernodal Cholesky; the symbolic analysis is done once, a factorisation is
+/// reused while its steps gain); and a line search towards the solution, never past
 /// the largest flip-free step (flip_free_step.h), taking a step only if it lowers the energy, the
 /// exact orientation predicates agree on every triangle and the border guard accepts it.
 #include <functional>
@@ -25,8 +26,9 @@ enum class BorderMode {
 /// Options of `optimise_isometric`.
 struct IsometricOptions {
     int max_iterations = 1000;  ///< iteration cap (`--iterations`)
-    /// Stop when an iteration lowers the energy by less than this fraction of it.
-    double tolerance = 1e-4;
+    /// Stop when the Newton step (with a new Hessian) is predicted to lower the energy by less
+    /// than this fraction of it (the Newton decrement).
+    double tolerance = 1e-6;
     BorderMode border = BorderMode::free;
     /// The rectangle the free border stays in: the image, [0, 1]^2 in UV (widened to hold the
     /// starting map if that reaches outside).
@@ -41,7 +43,9 @@ struct IsometricOptions {
     /// instead of a factorisation. Off: a new Hessian every iteration (plain projected Newton).
     bool reuse_hessian = true;
     bool parallel = true;  ///< per-face work with TBB (the result is the same bit for bit either way)
-    /// Called after every accepted iteration with the map and its energy (tests certify each iterate).
+    /// Called after every accepted iteration with the map and its symmetric Dirichlet energy
+    /// (tests certify each iterate). The line search decreases that energy plus the free
+    /// border's barrier (zero away from the image's edges).
     std::function<void(int iteration, const std::vector<Vec2>& uv, double energy)> on_iteration;
 };
 
@@ -50,11 +54,14 @@ struct IsometricStats {
     int iterations = 0;           ///< accepted iterations
     std::vector<double> energy;   ///< energy[0] on entry, energy[i] after iteration i
     bool converged = false;       ///< stopped by the tolerance (or at a point no step can improve)
-    std::string stop;             ///< "tolerance", "iterations", "no descent step", "no free vertex"
+    /// "tolerance", "iterations", "no descent step", "border contact" (the free border touches
+    /// itself and the steps it allows gain less than the tolerance), "no free vertex"
+    std::string stop;
     int factorisations = 0;       ///< numeric Cholesky factorisations (the dominant cost)
     long halvings = 0;            ///< line-search step halvings in all
     long exact_rejections = 0;    ///< trial steps the floating-point test passed and the exact predicates refused
     long border_rejections = 0;   ///< trial steps the border guard refused
+    long border_holds = 0;        ///< times border vertices at a contact were held for an iteration
     int free_vertices = 0;        ///< vertices that move in the plane
     int sliding_vertices = 0;     ///< border vertices that slide along a side (fixed border)
     double energy_before() const { return energy.empty() ? 0 : energy.front(); }
