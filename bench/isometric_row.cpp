@@ -89,11 +89,7 @@ int main(int argc, char** argv) {
     }
     try {
         const TriMesh mesh = read_mesh(path);
-        std::mt19937 rng(seed);
-        const std::vector<Vec2> tutte = ctmap::test::tutte_map(mesh);
-        const int border = std::max(3, std::min(40, features / 4));
-        const auto rf = ctmap::test::random_features(mesh, tutte, features, border, twist, rng);
-        const std::vector<MapFeature> mf = ctmap::test::map_features_of(rf);
+        const std::vector<MapFeature> mf = ctmap::test::bench_features(mesh, features, twist, seed);
         std::vector<double> iso_ms, paper_ms, arap_ms;
         MapResult iso;
         bool arap_ok = true;

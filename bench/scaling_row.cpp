@@ -98,11 +98,7 @@ int main(int argc, char** argv) {
     const bool with_cgal = cgal_runs > 0;
     try {
         const TriMesh mesh = subdivide_midpoint(read_mesh(path), levels);
-        std::mt19937 rng(seed);
-        const std::vector<Vec2> tutte = ctmap::test::tutte_map(mesh);
-        const int border = std::max(3, std::min(40, features / 4));
-        const auto rf = ctmap::test::random_features(mesh, tutte, features, border, 1.0, rng);
-        const std::vector<MapFeature> mf = ctmap::test::map_features_of(rf);
+        const std::vector<MapFeature> mf = ctmap::test::bench_features(mesh, features, 1.0, seed);
         std::vector<double> tri, paths, embed, refine, certify, total, cgal;
         MapResult last;
         bool cgal_ok = true;

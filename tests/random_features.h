@@ -92,4 +92,12 @@ inline std::vector<MapFeature> map_features_of(const RandomFeatures& rf) {
     return out;
 }
 
+/// The benchmarks' random feasible set (bench/scaling_row, bench/isometric_row): `n` features,
+/// a quarter of them (3 to 40) on the border, twisted by `strength`, from `seed`.
+inline std::vector<MapFeature> bench_features(const TriMesh& mesh, int n, double strength, unsigned seed) {
+    std::mt19937 rng(seed);
+    const int border = std::max(3, std::min(40, n / 4));
+    return map_features_of(random_features(mesh, tutte_map(mesh), n, border, strength, rng));
+}
+
 }  // namespace ctmap::test

@@ -21,11 +21,11 @@
 namespace ctmap {
 namespace {
 
-/// How a vertex moves: x = c + P y with y its `n` unknowns (n = 0: fixed at c; n = 1: along the
-/// direction P.col(0) from c; n = 2: freely, P = I, c = 0).
+/// How a vertex moves in a Newton step: dx = P dy with dy its `n` unknowns (n = 0: fixed; n = 1:
+/// along `dir`, P = dir; n = 2: freely, P = I).
 struct Dof {
     int first = -1, n = 0;
-    Vec2 c = Vec2::Zero(), dir = Vec2::Zero();
+    Vec2 dir = Vec2::Zero();
     Vec2 column(int i) const { return n == 1 ? dir : Vec2(i == 0, i == 1); }
 };
 
@@ -179,14 +179,12 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     };
     std::vector<Dof> dof(nv);
     for (int v = 0; v < nv; ++v) {
-        dof[v].c = uv[v];
         if (!used[v] || is_fixed[v]) continue;
         if (on_border[v] && o.border == BorderMode::fixed) continue;  // set below
         // A free border vertex already on the rectangle's edge (a side of the image's own
         // border) stays there: the barrier below would be infinite for it.
         if (on_border[v] && on_wall(uv[v])) continue;
         dof[v].n = 2;
-        dof[v].c = Vec2::Zero();
     }
     if (o.border == BorderMode::fixed) {
         // Each side runs from one fixed border vertex to the next along the loop.
@@ -205,7 +203,6 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
                     Dof& d = dof[loop[(start + i) % n]];
                     if (!(dir.squaredNorm() > 0)) continue;  // stays fixed
                     d.n = 1;
-                    d.c = uv[a];
                     d.dir = dir;
                 }
                 s = e;
