@@ -78,7 +78,7 @@ for t in "${targets[@]}"; do
     if ! TMPDIR="$PWD/$work/tmp" timeout --signal=KILL 120 "$exe" -timeout=5 -rss_limit_mb=2048 \
         fuzz/regressions/"$t"/* >"$work/regressions.txt" 2>&1; then
       echo "fuzz: $t fails on a regression input (fuzz/regressions/$t; $work/regressions.txt)"
-      grep -E '==ctmap-fuzz==|ERROR:|runtime error|Running:' "$work/regressions.txt" | tail -6 | sed 's/^/    /'
+      { grep -E '==ctmap-fuzz==|ERROR:|runtime error|Running:' "$work/regressions.txt" || true; } | tail -6 | sed 's/^/    /'
       failed+=("$t")
       regressed+=("$t")
       continue
@@ -117,7 +117,10 @@ for t in "${targets[@]}"; do
     "$((SECONDS - t0))" "${artifact:+  reproducer: $artifact}"
   if [ "$result" != ok ]; then
     echo "---- $t: the report ($log)"
-    grep -E '==ctmap-fuzz==|ERROR:|runtime error|^ *#[0-9]+ 0x' "$log" | head -12 | cut -c1-220 | sed 's/^/    /'
+    # (no match, as for a target the outer timeout killed, and head closing the pipe early must
+    # not end the script under `set -e -o pipefail`: the summary below still has to be printed)
+    { grep -E '==ctmap-fuzz==|ERROR:|runtime error|^ *#[0-9]+ 0x' "$log" || true; } | sed -n '1,12p' | cut -c1-220 | sed 's/^/    /'
+    [ "$result" != hung ] || tail -3 "$log" | sed 's/^/    /'
   fi
 done
 echo "fuzz: ${#targets[@]} targets, ${seconds} s each, $((SECONDS - start)) s in all; logs in $runs"

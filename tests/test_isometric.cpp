@@ -8,6 +8,7 @@
 
 #include "ctmap/border_loop.h"
 #include "ctmap/certify/certificate.h"
+#include "ctmap/errors.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
 #include "ctmap/refine/flip_free_step.h"
@@ -111,6 +112,42 @@ TEST(Isometric, EveryIterateOfAHardCaseIsCertified) {
             EXPECT_GT(s.sliding_vertices, 0) << what;
         }
     }
+}
+
+// A run continued from another's map with that run's scale minimises the same energy: it starts
+// at the energy the first run ended with (to rounding), and never above it. Without the scale it
+// would take the new map's UV area (the free border changed it) and start elsewhere; a negative
+// scale is the caller's mistake.
+TEST(Isometric, AContinuedRunWithTheSameScaleMinimisesTheSameEnergy) {
+    const TriMesh mesh = read_mesh(data("meshes/nefertiti.off"));
+    std::mt19937 rng(7);
+    const RandomFeatures rf = random_features(mesh, tutte_map(mesh), 6, 4, 2.0, rng);
+    MapOptions popt;
+    popt.refine_mode = RefineMode::paper;
+    const MapResult r = map_texture(mesh, map_features_of(rf), popt);
+    std::vector<Vec2> uv = r.uv;
+    IsometricOptions first;
+    first.max_iterations = 8;
+    const IsometricStats a = optimise_isometric(r.cut.mesh, uv, r.cut.feature_vertex, first);
+    ASSERT_EQ(a.iterations, 8) << a.stop;
+    IsometricOptions next;
+    next.scale = a.scale;
+    next.max_iterations = 20;
+    std::vector<Vec2> uv2 = uv;
+    const IsometricStats b = optimise_isometric(r.cut.mesh, uv2, r.cut.feature_vertex, next);
+    EXPECT_EQ(b.scale, a.scale);
+    EXPECT_NEAR(b.energy_before(), a.energy_after(), 1e-12 * a.energy_after());
+    EXPECT_LE(b.energy_after(), a.energy_after());
+    expect_certified(r.cut.mesh, r.cut.feature_vertex, r.feature_uv, uv2, b.iterations, "continued run");
+    // The map's own UV area gives another scale (the free border moved), hence another energy.
+    std::vector<Vec2> uv3 = uv;
+    IsometricOptions own;
+    own.max_iterations = 0;
+    const IsometricStats c = optimise_isometric(r.cut.mesh, uv3, r.cut.feature_vertex, own);
+    EXPECT_NE(c.scale, a.scale);
+    IsometricOptions bad;
+    bad.scale = -1;
+    EXPECT_THROW(optimise_isometric(r.cut.mesh, uv3, r.cut.feature_vertex, bad), BadInput);
 }
 
 /// A strip wound `turns` times around the z axis (radius 0.25 to 1.25, rising 0.05 per radian):

@@ -19,7 +19,9 @@ std::uint32_t be32(const std::string& b, std::size_t at) { return (be16(b, at) <
 /// counts of one table sum to at most 256 (ITU T.81 B.2.4.2).
 void check_huffman_segment(const std::string& b, std::size_t from, std::size_t to, const std::string& name) {
     std::size_t at = from;
-    while (at + 1 < to) {
+    // stb_image reads tables while any byte of the segment is left: a table may start at its last
+    // byte (and read its counts past the end).
+    while (at < to) {
         std::uint32_t sum = 0;
         // stb_image reads all 16 counts of a table that starts in the segment, even past its end.
         for (std::size_t i = 0; i < 16 && at + 1 + i < b.size(); ++i) sum += (unsigned char)b[at + 1 + i];

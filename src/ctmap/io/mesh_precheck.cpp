@@ -302,7 +302,14 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
     auto at = [&](const std::string& who) { return "not a valid off file: line " + std::to_string(line_no) + ": " + who; };
     // A colour of `n` entries from entries[first]: 0, 1 (an index into CGAL's colour map), 3 or 4
     // (integers 0-255, or fractions 0-1).
-    auto check_colour = [&](long long first, long long n, const std::string& who) {
+    // Once a vertex (or face) line has a colour, CGAL's scanner reads one for every later line of
+    // that kind, past the end of a line that has none (a heap overflow in scan_color).
+    bool coloured[2] = {false, false};
+    auto check_colour = [&](long long first, long long n, const std::string& who, int kind) {
+        if (n == 0 && coloured[kind])
+            refuse(path, at(who) + " has no colour, but an earlier " + (kind == 0 ? "vertex" : "face") +
+                             " has one (give every one a colour, or none)");
+        coloured[kind] |= n != 0;
         if (n != 0 && n != 1 && n != 3 && n != 4)
             refuse(path, at(who) + " has " + std::to_string(n) + " colour values (0, 1, 3 or 4 are allowed)");
         if (n == 1 && !(entries[first] >= 0 && entries[first] <= 255 && std::floor(entries[first]) == entries[first]))
@@ -324,7 +331,7 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
         if ((long long)entries.size() < need)
             refuse(path, at(who) + " has " + std::to_string(entries.size()) + " numbers; the " + std::string(kw) +
                              " header asks for at least " + std::to_string(need));
-        if (colours) check_colour(coords + (normals ? 3 + H : 0), (long long)entries.size() - need, who);
+        if (colours) check_colour(coords + (normals ? 3 + H : 0), (long long)entries.size() - need, who, 0);
     }
     for (long long f = 0; f < nf; ++f) {
         if (!next_line())
@@ -344,7 +351,7 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
             if (!(entries[k] >= 0 && entries[k] < double(nv) && std::floor(entries[k]) == entries[k]))
                 refuse(path, at(who) + ": vertex index " + std::to_string(entries[k]) +
                                  " is not an integer in [0, " + std::to_string(nv) + ")");
-        if (colours) check_colour(corners + 1, (long long)entries.size() - corners - 1, who);
+        if (colours) check_colour(corners + 1, (long long)entries.size() - corners - 1, who, 1);
     }
 }
 

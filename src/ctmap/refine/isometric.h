@@ -43,6 +43,10 @@ struct IsometricOptions {
     /// instead of a factorisation. Off: a new Hessian every iteration (plain projected Newton).
     bool reuse_hessian = true;
     bool parallel = true;  ///< per-face work with TBB (the result is the same bit for bit either way)
+    /// The factor the mesh is scaled by in the energy (the energy is not scale invariant). 0: the
+    /// one that makes the mesh's area the map's UV area on entry. A run continued from another's
+    /// map passes that run's `IsometricStats::scale`, so that both minimise the same energy.
+    double scale = 0;
     /// Called after every accepted iteration with the map and its symmetric Dirichlet energy
     /// (tests certify each iterate). The line search decreases that energy plus the free
     /// border's barrier (zero away from the image's edges).
@@ -64,6 +68,7 @@ struct IsometricStats {
     long border_holds = 0;        ///< times border vertices at a contact were held for an iteration
     int free_vertices = 0;        ///< vertices that move in the plane
     int sliding_vertices = 0;     ///< border vertices that slide along a side (fixed border)
+    double scale = 0;             ///< the factor the mesh was scaled by in the energy (IsometricOptions::scale)
     double energy_before() const { return energy.empty() ? 0 : energy.front(); }
     double energy_after() const { return energy.empty() ? 0 : energy.back(); }
 };
@@ -71,11 +76,12 @@ struct IsometricStats {
 /// Minimises the symmetric Dirichlet energy of the per-vertex map `uv` of `mesh` with the
 /// vertices `fixed` held bitwise where they are. The energy is the area-weighted mean of
 /// |J|^2 + |J^-1|^2 over the faces (4 for an isometry), the mesh scaled so that its area is the
-/// map's UV area on entry (the certificate's normalisation, held fixed while the map moves).
+/// map's UV area on entry (the certificate's normalisation, held fixed while the map moves), or by
+/// `options.scale` if that is positive.
 /// \pre uv.size() == mesh.num_vertices(); `mesh` is a manifold disc with its border loop; the map
 ///      is valid (every triangle of one nonzero orientation, exactly; the border simple).
-/// \throw BadInput if the sizes do not match, a fixed vertex is out of range or the map is not
-///        valid on entry.
+/// \throw BadInput if the sizes do not match, a fixed vertex is out of range, the scale is negative
+///        or not finite, or the map is not valid on entry.
 IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<int>& fixed,
                                   const IsometricOptions& options = {});
 
