@@ -138,6 +138,7 @@ int main(int argc, char** argv) {
             j["long"] = {{"iterations", iso.isometric_stats.iterations + ls.iterations},
                          {"stop", ls.stop},
                          {"energy", ls.energy_after()},
+                         {"energy_per_iteration", ls.energy},
                          {"symmetric_dirichlet", lc.distortion.symmetric_dirichlet},
                          {"valid", lc.valid}};
             // The gap in the energy both runs minimise (the same scale); the certificate's

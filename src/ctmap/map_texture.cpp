@@ -306,6 +306,9 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
     std::vector<Vec3>& out = r.cut.mesh.positions;
     for (std::size_t v = 0; v < out.size(); ++v)
         out[v] = v < input.positions.size() ? input.positions[v] : box.out(out[v]);
+    // The optimiser's scale, for the mesh as returned: a run continued on r.cut.mesh with it
+    // minimises the same energy (IsometricOptions::scale).
+    r.isometric_stats.scale /= box.half;
     r.timings_ms.total = ms_since(start);
     if (!r.certificate.valid)
         throw InternalError("the map failed its certificate (" + std::to_string(r.certificate.flipped) + " flipped, " +

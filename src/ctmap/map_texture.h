@@ -70,7 +70,7 @@ struct MapResult {
     CutStats cut_stats;
     FlatEdgeStats flat_edges;
     RelaxStats relax_stats;
-    IsometricStats isometric_stats;   ///< empty unless RefineMode::isometric
+    IsometricStats isometric_stats;   ///< empty unless RefineMode::isometric; its `scale` is for `cut.mesh` as returned
     Distortion before_refine;         ///< distortion of the bare embedding
     Distortion after_relax;           ///< distortion after the paper's relaxation (before the optimiser)
     Certificate certificate;          ///< of the written map (valid, or map_texture throws)
