@@ -3,6 +3,8 @@
 // isometric flattening overlaps itself.
 #include <gtest/gtest.h>
 
+#include <dlfcn.h>
+
 #include <cmath>
 #include <random>
 
@@ -160,6 +162,30 @@ TEST(Isometric, AContinuedRunWithTheSameScaleMinimisesTheSameEnergy) {
     IsometricOptions bad;
     bad.scale = -1;
     EXPECT_THROW(optimise_isometric(r.cut.mesh, uv3, r.cut.feature_vertex, bad), BadInput);
+}
+
+// The optimiser runs CHOLMOD's OpenMP regions serially (SerialOpenMp in isometric.cpp: Debian's
+// CHOLMOD asks for 4 threads beside TBB's) and gives the caller's OpenMP setting back:
+// max-active-levels is 0 during the run and what it was before afterwards.
+TEST(Isometric, CholmodsOpenMpIsSerialWhileItRunsAndRestoredAfter) {
+    const TriMesh mesh = read_mesh(data("meshes/nefertiti.off"));
+    std::mt19937 rng(7);
+    const RandomFeatures rf = random_features(mesh, tutte_map(mesh), 6, 4, 2.0, rng);
+    MapOptions popt;
+    popt.refine_mode = RefineMode::paper;
+    const MapResult r = map_texture(mesh, map_features_of(rf), popt);
+    using Get = int (*)();
+    const auto get_levels = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+    ASSERT_NE(get_levels, nullptr) << "libgomp (CHOLMOD's OpenMP) is not loaded";
+    const int levels = get_levels();
+    int during = -1;
+    IsometricOptions watched;
+    watched.max_iterations = 1;
+    watched.on_iteration = [&](int, const std::vector<Vec2>&, double) { during = get_levels(); };
+    std::vector<Vec2> uv5 = r.uv;
+    optimise_isometric(r.cut.mesh, uv5, r.cut.feature_vertex, watched);
+    EXPECT_EQ(during, 0);
+    EXPECT_EQ(get_levels(), levels);
 }
 
 /// A strip wound `turns` times around the z axis (radius 0.25 to 1.25, rising 0.05 per radian):

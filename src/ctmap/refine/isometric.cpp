@@ -63,6 +63,37 @@ void single_threaded_blas() {
     if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
 }
 
+/// Debian's CHOLMOD is built with OpenMP and asks for 4 threads (CHOLMOD_OMP_NUM_THREADS) in its
+/// supernodal numeric factorisation, whatever the machine. Beside TBB's workers on 2 cores that
+/// is oversubscription: on mannequin-devil with 20 features a third of the optimiser's time went
+/// to futex waits and wake-ups in libgomp, and the run took 3x as long as with OMP_THREAD_LIMIT=1
+/// (bit for bit the same map). While the optimiser runs, OpenMP's max-active-levels is 0, which
+/// makes every parallel region run on the calling thread; the caller's setting is put back on
+/// exit. (Looked up at run time: libgomp comes with CHOLMOD, not linked by ctmap itself.)
+class SerialOpenMp {
+public:
+    SerialOpenMp() {
+        get_ = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+        set_ = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+        if (get_ && set_) {
+            saved_ = get_();
+            set_(0);
+        }
+    }
+    ~SerialOpenMp() {
+        if (get_ && set_) set_(saved_);
+    }
+    SerialOpenMp(const SerialOpenMp&) = delete;
+    SerialOpenMp& operator=(const SerialOpenMp&) = delete;
+
+private:
+    using Get = int (*)();
+    using Set = void (*)(int);
+    Get get_ = nullptr;
+    Set set_ = nullptr;
+    int saved_ = 0;
+};
+
 /// One face's share of the Newton step: with J = U diag(s1, s2) V^T (U, V rotations; det J > 0),
 /// the energy density Psi = s1^2 + s2^2 + s1^-2 + s2^-2 has dPsi/dJ = U diag(Psi_1, Psi_2) V^T
 /// and a Hessian with respect to J whose eigenvectors are known in closed form (Smith, de Goes and
@@ -309,6 +340,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             diag[c] = int(std::lower_bound(inner + outer[c], inner + outer[c + 1], c) - inner);
     }
     single_threaded_blas();
+    const SerialOpenMp serial_openmp;
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
     solver.analyzePattern(K);
 
