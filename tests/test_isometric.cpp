@@ -116,17 +116,32 @@ TEST(Isometric, EveryIterateOfAHardCaseIsCertified) {
     }
 }
 
+/// nefertiti with 6 random features (twist 2) and its map after the paper's relaxation.
+struct SmallCase {
+    TriMesh mesh;
+    RandomFeatures rf;
+    MapResult paper;
+};
+SmallCase small_case() {
+    SmallCase c;
+    c.mesh = read_mesh(data("meshes/nefertiti.off"));
+    std::mt19937 rng(7);
+    c.rf = random_features(c.mesh, tutte_map(c.mesh), 6, 4, 2.0, rng);
+    MapOptions popt;
+    popt.refine_mode = RefineMode::paper;
+    c.paper = map_texture(c.mesh, map_features_of(c.rf), popt);
+    return c;
+}
+
 // A run continued from another's map with that run's scale minimises the same energy: it starts
 // at the energy the first run ended with (to rounding), and never above it. Without the scale it
 // would take the new map's UV area (the free border changed it) and start elsewhere; a negative
 // scale is the caller's mistake.
 TEST(Isometric, AContinuedRunWithTheSameScaleMinimisesTheSameEnergy) {
-    const TriMesh mesh = read_mesh(data("meshes/nefertiti.off"));
-    std::mt19937 rng(7);
-    const RandomFeatures rf = random_features(mesh, tutte_map(mesh), 6, 4, 2.0, rng);
-    MapOptions popt;
-    popt.refine_mode = RefineMode::paper;
-    const MapResult r = map_texture(mesh, map_features_of(rf), popt);
+    const SmallCase sc = small_case();
+    const TriMesh& mesh = sc.mesh;
+    const auto& rf = sc.rf;
+    const MapResult& r = sc.paper;
     std::vector<Vec2> uv = r.uv;
     IsometricOptions first;
     first.max_iterations = 8;
@@ -168,12 +183,10 @@ TEST(Isometric, AContinuedRunWithTheSameScaleMinimisesTheSameEnergy) {
 // CHOLMOD asks for 4 threads beside TBB's) and gives the caller's OpenMP setting back:
 // max-active-levels is 0 during the run and what it was before afterwards.
 TEST(Isometric, CholmodsOpenMpIsSerialWhileItRunsAndRestoredAfter) {
-    const TriMesh mesh = read_mesh(data("meshes/nefertiti.off"));
-    std::mt19937 rng(7);
-    const RandomFeatures rf = random_features(mesh, tutte_map(mesh), 6, 4, 2.0, rng);
-    MapOptions popt;
-    popt.refine_mode = RefineMode::paper;
-    const MapResult r = map_texture(mesh, map_features_of(rf), popt);
+    const SmallCase sc = small_case();
+    const TriMesh& mesh = sc.mesh;
+    const auto& rf = sc.rf;
+    const MapResult& r = sc.paper;
     using Get = int (*)();
     const auto get_levels = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
     ASSERT_NE(get_levels, nullptr) << "libgomp (CHOLMOD's OpenMP) is not loaded";
