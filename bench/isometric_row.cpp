@@ -6,7 +6,7 @@
 // with --arap, CGAL's unconstrained ARAP_parameterizer_3 on the same mesh timed in the same
 // process, alternating with ctmap's runs. Prints one JSON object.
 //
-//   isometric_row MESH [--features N] [--twist T] [--seed S] [--runs R] [--arap] [--no-long] [--tolerance T]
+//   isometric_row MESH [--features N] [--twist T] [--seed S] [--runs R] [--arap] [--no-long] [--tolerance T] [--no-reuse]
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
@@ -67,14 +67,14 @@ double cgal_arap_ms(const TriMesh& mesh, bool& ok, int& flipped, Distortion& dis
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::cerr << "usage: isometric_row MESH [--features N] [--twist T] [--seed S] [--runs R] [--arap] [--no-long] [--tolerance T]\n";
+        std::cerr << "usage: isometric_row MESH [--features N] [--twist T] [--seed S] [--runs R] [--arap] [--no-long] [--tolerance T] [--no-reuse]\n";
         return 2;
     }
     const std::string path = argv[1];
     int features = 20, runs = 1;
     unsigned seed = 1;
     double twist = 1.0;
-    bool arap = false, long_run = true;
+    bool arap = false, long_run = true, reuse = true;
     double tolerance = IsometricOptions().tolerance;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
@@ -86,6 +86,7 @@ int main(int argc, char** argv) {
         else if (a == "--arap") arap = true;
         else if (a == "--no-long") long_run = false;
         else if (a == "--tolerance") tolerance = std::stod(next());
+        else if (a == "--no-reuse") reuse = false;
     }
     try {
         const TriMesh mesh = read_mesh(path);
@@ -98,6 +99,7 @@ int main(int argc, char** argv) {
         for (int r = 0; r < runs; ++r) {
             MapOptions options;
             options.isometric.tolerance = tolerance;
+            options.isometric.reuse_hessian = reuse;
             iso = map_texture(mesh, mf, options);
             iso_ms.push_back(iso.timings_ms.total);
             MapOptions paper;
