@@ -184,8 +184,6 @@ TEST(Isometric, AContinuedRunWithTheSameScaleMinimisesTheSameEnergy) {
 // max-active-levels is 0 during the run and what it was before afterwards.
 TEST(Isometric, CholmodsOpenMpIsSerialWhileItRunsAndRestoredAfter) {
     const SmallCase sc = small_case();
-    const TriMesh& mesh = sc.mesh;
-    const auto& rf = sc.rf;
     const MapResult& r = sc.paper;
     using Get = int (*)();
     const auto get_levels = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));

@@ -67,11 +67,9 @@ std::string without_empty_idat(const std::string& b, const std::string& name) {
                                      std::to_string(b.size() - at - 12) + " follow");
         if (len > b.size() - at - 12) break;  // truncated or corrupt: leave the rest to stb_image
         if (!(len == 0 && idat)) out.append(b, at, 12 + std::size_t(len));
-        if (b.compare(at + 4, 4, "IEND") == 0) {  // stb_image reads no further
-            at += 12 + std::size_t(len);
-            break;
-        }
+        const bool end = b.compare(at + 4, 4, "IEND") == 0;  // stb_image reads no further
         at += 12 + std::size_t(len);
+        if (end) break;
     }
     out.append(b, at, std::string::npos);
     return out;

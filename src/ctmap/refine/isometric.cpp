@@ -144,6 +144,8 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     if (int(uv.size()) != nv)
         throw BadInput("", "optimise_isometric: " + std::to_string(uv.size()) + " UVs for " + std::to_string(nv) +
                                " vertices");
+    if (!(o.scale >= 0) || !std::isfinite(o.scale))
+        throw BadInput("", "optimise_isometric: the scale must be a finite number >= 0");
     IsometricStats stats;
     if (nf == 0) {
         stats.stop = "no free vertex";
@@ -178,8 +180,6 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         stats.stop = "no free vertex";
         return stats;
     }
-    if (!(o.scale >= 0) || !std::isfinite(o.scale))
-        throw BadInput("", "optimise_isometric: the scale must be a finite number >= 0");
     // (Measured and rejected: the scale at which the entry map's energy is least, or the area
     // median of the faces' scales. They halve the iterations on some sets, but a relaxed map that
     // squeezes most faces gets a tiny scale there and converges to a far more distorted map.)
