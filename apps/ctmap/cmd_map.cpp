@@ -96,6 +96,12 @@ void print_map_header(const MapArgs& a, std::size_t features, const MapRun& run,
 
 }  // namespace
 
+std::string auto_border_line(const AutoBorder& added, bool kept_fixed) {
+    return "border: added " + std::to_string(added.vertex.size()) + " border feature(s) (" + added.reason +
+           (kept_fixed ? "); they are held where they were placed"
+                       : "); they only start the border: the optimiser moves them with the free border");
+}
+
 TextureCopy texture_for_obj(const MapArgs& a, const std::string& image) {
     TextureCopy t;
     if (image.empty()) return t;
@@ -139,6 +145,7 @@ MapRun run_map(const MapArgs& a) {
     MapOptions options;
     if (a.spacing > 0) options.cut.spacing_factor = a.spacing;
     options.refine = a.refine;
+    options.auto_border = a.border == "auto";
     options.refine_mode = a.refine_mode == "paper" ? RefineMode::paper : RefineMode::isometric;
     options.isometric.border = a.border_mode == "fixed" ? BorderMode::fixed : BorderMode::free;
     options.isometric.keep_in_box = a.border_mode != "unbounded";
@@ -149,6 +156,8 @@ MapRun run_map(const MapArgs& a) {
     options.progress = [&](const std::string& stage, int done, int total) { progress(stage, done, total); };
     run.result = map_texture(mesh, map_features(features, run.width, run.height), options, a.features);
     progress.clear();
+    if (!a.quiet && !run.result.auto_border.vertex.empty())
+        std::cout << "  " << auto_border_line(run.result.auto_border, run.result.auto_border_fixed) << std::endl;
     if (!a.quiet && run.texture.upright)
         std::cout << "  note: " << run.image << " is turned by its EXIF orientation; the OBJ's material uses the "
                   << "upright copy " << run.texture.copy << std::endl;
@@ -243,6 +252,11 @@ Command add_map_command(CLI::App& app) {
                     "isometric (default): the paper's relaxation (§2.4), then the distortion optimiser (symmetric "
                     "Dirichlet, every iterate certified valid, features exact); paper: the relaxation only")
         ->check(CLI::IsMember({"paper", "isometric"}));
+    sub->add_option("--border", args->border,
+                    "auto (default): where the given features cannot make the border (fewer than 3 on the mesh "
+                    "border, or an interior feature outside their straight polygon), place border features on "
+                    "the mesh border (README: the rules); given: the paper's rules, such layouts refused")
+        ->check(CLI::IsMember({"auto", "given"}));
     sub->add_option("--border-mode", args->border_mode,
                     "with --refine isometric: free (default) lets the border vertices move, the border staying "
                     "simple and inside the image; fixed keeps them on the straight sides between border features; "

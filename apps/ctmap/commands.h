@@ -28,6 +28,7 @@ struct MapArgs {
     bool refine = true;
     std::string refine_mode = "isometric";  ///< --refine paper|isometric
     std::string border_mode = "free";       ///< --border-mode free|fixed
+    std::string border = "auto";            ///< --border auto|given: place border features where needed
     int iterations = 1000;                  ///< --iterations: the optimiser's cap
     double tolerance = 1e-6;                ///< --tolerance: the optimiser's Newton decrement, relative
     bool quiet = false;
@@ -56,6 +57,9 @@ struct MapRun {
 /// Reads, maps (map_texture), certifies and writes OBJ + MTL (+ GLB, report) together.
 /// 	hrow BadInput / InternalError as map_texture and the readers and writers; nothing is written then.
 MapRun run_map(const MapArgs& args);
+
+/// The one line that says which border features ctmap added and why (`--border auto`).
+std::string auto_border_line(const AutoBorder& added, bool kept_fixed);
 
 /// The short human summary of a map.
 void print_map_summary(const MapArgs& args, const MapRun& run, std::ostream& os);

@@ -77,7 +77,7 @@ int cmd_info(const std::string& mesh_path, bool as_json) {
 /// the feature layout (border features in the border's order, a simple border polygon holding
 /// every interior feature).
 int cmd_validate(const std::string& mesh_path, const std::string& features_path, const std::string& image_arg,
-                 double snap) {
+                 double snap, const std::string& border) {
     const TriMesh mesh = read_mesh(mesh_path);
     const MeshTopology t = compute_topology(mesh);
     require_disc(t, mesh_path);
@@ -85,10 +85,14 @@ int cmd_validate(const std::string& mesh_path, const std::string& features_path,
     int w = 0, h = 0;
     const std::string image = resolve_feature_image(fs, image_arg, w, h);
     const double moved = check_features_on_mesh(fs, mesh, mesh_path, snap);
-    const FeatureTriangulation tri = check_feature_layout(mesh, map_features(fs, w, h), features_path, snap);
+    const FeatureLayout layout = check_feature_layout(mesh, map_features(fs, w, h), features_path, snap, border == "auto");
+    const FeatureTriangulation& tri = layout.triangulation;
     std::cout << "ok: " << mesh_path << " is a disc (" << t.vertices << " vertices, " << t.faces << " faces); "
               << fs.features.size() << " features in " << features_path << " on a " << w << " x " << h << " image"
               << (image.empty() ? "" : " (" + image + ")") << "; " << tri.triangles.size() << " patches\n";
+    if (!layout.auto_border.vertex.empty())
+        std::cout << "  border: `ctmap map` adds " << layout.auto_border.vertex.size() << " border feature(s) ("
+                  << layout.auto_border.reason << "; --border given refuses this layout)\n";
     if (moved > 0)
         std::cout << "  note: 3D point features lie up to " << moved << " off the surface; `ctmap map` places each "
                   << "at the closest point of the surface\n";
@@ -217,6 +221,11 @@ int run(int argc, char** argv) {
     validate->add_option("FEATURES", features_path, "features.json: the same features on the mesh and the image (README)")->required();
     validate->add_option("--image", image_arg, "texture image (PNG/JPEG); overrides the features file's \"image\"");
     validate->add_option("--snap", snap, snap_help)->check(CLI::NonNegativeNumber);
+    std::string border = "auto";
+    validate->add_option("--border", border,
+                         "auto (default): say which border features `ctmap map` would add where the given ones cannot "
+                         "make the border; given: the paper's rules, such layouts refused")
+        ->check(CLI::IsMember({"auto", "given"}));
 
     auto* convert = app.add_subcommand("convert", "Convert a mesh to OBJ or binary glTF (.glb)");
     convert->add_option("MESH", mesh_path, "input mesh file")->required();
@@ -264,7 +273,7 @@ int run(int argc, char** argv) {
         return code == 0 ? kExitOk : kExitBadInput;
     }
     if (*info) return cmd_info(mesh_path, as_json);
-    if (*validate) return cmd_validate(mesh_path, features_path, image_arg, snap);
+    if (*validate) return cmd_validate(mesh_path, features_path, image_arg, snap, border);
     if (*convert) return cmd_convert(mesh_path, out_path);
     if (*check) return cmd_check(mesh_path, features_path, image_arg, as_json, snap);
     if (*demo) return cmd_demo(demo_out);

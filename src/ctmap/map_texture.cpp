@@ -200,14 +200,34 @@ Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, 
     return p;
 }
 
+/// Places the automatic border (domain/auto_border.h) when the given features need one and
+/// appends its features to `in` (after the given ones, named auto_border_1, ...).
+AutoBorder add_border_features(Prepared& in, const std::string& features_file) {
+    AutoBorderOptions opt;
+    opt.features_file = features_file;
+    AutoBorder added = place_border_features(in.mesh, in.feature_vertex, in.uv, in.names, opt);
+    for (std::size_t j = 0; j < added.vertex.size(); ++j) {
+        std::string name = "auto_border_" + std::to_string(j + 1);
+        while (std::find(in.names.begin(), in.names.end(), name) != in.names.end()) name += "'";
+        in.names.push_back(name);
+        added.name.push_back(name);
+        in.feature_vertex.push_back(added.vertex[j]);
+        in.uv.push_back(added.uv[j]);
+    }
+    return added;
+}
+
 }  // namespace
 
-FeatureTriangulation check_feature_layout(const TriMesh& input, const std::vector<MapFeature>& features,
-                                          const std::string& features_file, double snap) {
-    const Prepared in = prepare(input, features, snap, features_file);
+FeatureLayout check_feature_layout(const TriMesh& input, const std::vector<MapFeature>& features,
+                                   const std::string& features_file, double snap, bool auto_border) {
+    Prepared in = prepare(input, features, snap, features_file);
+    FeatureLayout out;
+    if (auto_border) out.auto_border = add_border_features(in, features_file);
     TriangulateOptions topt;
     topt.features_file = features_file;
-    return triangulate_features(in.uv, border_features(in.mesh, in.feature_vertex), in.names, topt);
+    out.triangulation = triangulate_features(in.uv, border_features(in.mesh, in.feature_vertex), in.names, topt);
+    return out;
 }
 
 std::vector<MapFeature> map_features(const FeatureSet& fs, int width, int height) {
@@ -232,6 +252,8 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
     };
     MapResult r;
     Prepared in = prepare(input, features, options.snap, features_file);
+    const std::size_t given = in.feature_vertex.size();
+    if (options.auto_border) r.auto_border = add_border_features(in, features_file);
     TriMesh& mesh = in.mesh;
     const std::vector<int>& fv = in.feature_vertex;
     const UnitBox& box = in.box;
@@ -281,11 +303,16 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
                     options.progress("optimise", it, iopt.max_iterations);
                 };
             }
-            r.isometric_stats = optimise_isometric(r.cut.mesh, r.uv, r.cut.feature_vertex, iopt);
+            // The added border features only start a free border: the optimiser moves them.
+            std::vector<int> fixed = r.cut.feature_vertex;
+            if (iopt.border == BorderMode::free) fixed.resize(given), r.auto_border_fixed = false;
+            r.isometric_stats = optimise_isometric(r.cut.mesh, r.uv, fixed, iopt);
             r.timings_ms.optimise = ms_since(t0);
         }
     }
 
+    r.cut.feature_vertex.resize(given);  // the given features (the added ones are in r.auto_border)
+    r.feature_uv.resize(given);
     stage("certify");
     t0 = Clock::now();
     r.certificate = certify(r.textured(), r.cut.feature_vertex, r.feature_uv);

@@ -10,6 +10,7 @@
 
 #include "ctmap/certify/certificate.h"
 #include "ctmap/cut/cut_mesh.h"
+#include "ctmap/domain/auto_border.h"
 #include "ctmap/domain/feature_triangulation.h"
 #include "ctmap/embed/mean_value_embedding.h"
 #include "ctmap/io/features.h"
@@ -31,6 +32,9 @@ struct MapOptions {
     EmbedOptions embed;
     RelaxOptions relax;
     bool refine = true;  ///< run the relaxation (paper §2.4); off gives the bare embedding
+    /// `--border auto` (true): place border features where the given ones cannot make a border
+    /// (domain/auto_border.h); `--border given` (false): the paper's rules, refused otherwise.
+    bool auto_border = true;
     RefineMode refine_mode = RefineMode::isometric;
     /// The optimiser's options (with RefineMode::isometric). Its border mode also decides the
     /// relaxation's: with a fixed border the relaxation leaves the border vertices on their sides.
@@ -63,9 +67,17 @@ struct MapFeature {
 struct MapResult {
     /// The cut mesh: its vertices [0, |V|) are the input's in order (DESIGN §3); point features,
     /// path and Steiner vertices follow. `cut.feature_vertex[i]` is feature i's vertex.
+    /// `cut.feature_vertex` lists the given features only (the added border features are in
+    /// `auto_border`).
     CutMesh cut;
     std::vector<Vec2> uv;             ///< one UV per vertex of cut.mesh (the written map)
-    std::vector<Vec2> feature_uv;     ///< per feature, its UV constraint
+    std::vector<Vec2> feature_uv;     ///< per given feature, its UV constraint
+    /// The border features ctmap placed (`MapOptions::auto_border`): their vertices (of cut.mesh)
+    /// and the UVs they started at; none when the given features make a border.
+    AutoBorder auto_border;
+    /// Whether the added border features kept their UVs (the paper's relaxation, a fixed
+    /// border) or only started the border (the optimiser with a free border moves them).
+    bool auto_border_fixed = true;
     FeatureTriangulation triangulation;
     CutStats cut_stats;
     FlatEdgeStats flat_edges;
@@ -99,13 +111,21 @@ struct MapResult {
 MapResult map_texture(const TriMesh& mesh, const std::vector<MapFeature>& features, const MapOptions& options = {},
                       const std::string& features_file = "");
 
+/// What `check_feature_layout` found: the triangulation `map_texture` would cut along (over the
+/// given features, then the added border features) and the border features it would add.
+struct FeatureLayout {
+    FeatureTriangulation triangulation;
+    AutoBorder auto_border;
+};
+
 /// Every check `map_texture` makes before the cut (paper §2.2): vertex indices, point features on
-/// distinct vertices, at least 3 border features in the mesh border's cyclic order, a simple
-/// border polygon that holds every interior feature, distinct feature points. `ctmap validate`
-/// runs it, so it gives the verdict and the message `ctmap map` would.
-/// \pre as map_texture. \return the feature triangulation. \throw BadInput as map_texture.
-FeatureTriangulation check_feature_layout(const TriMesh& mesh, const std::vector<MapFeature>& features,
-                                          const std::string& features_file = "", double snap = -1);
+/// distinct vertices, at least 3 border features in the mesh border's cyclic order (or, with
+/// `auto_border`, the border features it would place), a simple border polygon that holds every
+/// interior feature, distinct feature points. `ctmap validate` runs it, so it gives the verdict
+/// and the message `ctmap map` would.
+/// \pre as map_texture. \throw BadInput as map_texture.
+FeatureLayout check_feature_layout(const TriMesh& mesh, const std::vector<MapFeature>& features,
+                                   const std::string& features_file = "", double snap = -1, bool auto_border = true);
 
 /// The features of a features file for `map_texture`. \pre `resolve_units(fs, width, height)`
 /// was called (image points in pixels).

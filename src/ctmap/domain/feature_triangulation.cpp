@@ -56,11 +56,11 @@ void mark_domains(CDT& cdt) {
     }
 }
 
-std::string name_of(const std::vector<std::string>& names, int i) {
+}  // namespace
+
+std::string feature_label(const std::vector<std::string>& names, int i) {
     return i < int(names.size()) && !names[i].empty() ? "'" + names[i] + "'" : "#" + std::to_string(i);
 }
-
-}  // namespace
 
 FeatureTriangulation triangulate_features(const std::vector<Vec2>& uv, const std::vector<int>& border,
                                           const std::vector<std::string>& names, const TriangulateOptions& opt) {
@@ -103,8 +103,8 @@ FeatureTriangulation triangulate_features(const std::vector<Vec2>& uv, const std
             if (bad)
                 throw BadInput(file, "the border features' order in the image does not match their order along the "
                                      "mesh border: border edges " +
-                                         name_of(names, border[i]) + "-" + name_of(names, border[i2]) + " and " +
-                                         name_of(names, border[j]) + "-" + name_of(names, border[j2]) +
+                                         feature_label(names, border[i]) + "-" + feature_label(names, border[i2]) + " and " +
+                                         feature_label(names, border[j]) + "-" + feature_label(names, border[j2]) +
                                          " cross in the image");
         }
 
@@ -112,7 +112,7 @@ FeatureTriangulation triangulate_features(const std::vector<Vec2>& uv, const std
     for (int i = 0; i < n; ++i) {
         if (on_border[i]) continue;
         const auto side = CGAL::bounded_side_2(poly.begin(), poly.end(), pts[i], K());
-        if (side != CGAL::ON_BOUNDED_SIDE) outside.push_back(name_of(names, i) + (side == CGAL::ON_BOUNDARY ? " (on it)" : ""));
+        if (side != CGAL::ON_BOUNDED_SIDE) outside.push_back(feature_label(names, i) + (side == CGAL::ON_BOUNDARY ? " (on it)" : ""));
     }
     if (!outside.empty()) {
         std::string list;

@@ -33,6 +33,9 @@ struct TriangulateOptions {
     std::string features_file;  ///< names the file in error messages
 };
 
+/// How messages name feature `i`: 'name' in quotes, or #i when it has none.
+std::string feature_label(const std::vector<std::string>& names, int i);
+
 /// Builds the constrained Delaunay triangulation of `points` (UV) with the border polygon
 /// `border` (feature indices in the order the mesh border meets them) as constraints, keeping
 /// only the triangles inside it.

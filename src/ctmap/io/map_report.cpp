@@ -36,6 +36,15 @@ nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
                    {"steiner_vertices", r.cut_stats.steiner_vertices},
                    {"flat_edges_split", r.flat_edges.edges_split},
                    {"fallback_fired", r.cut_stats.fallback_fired}};
+    nlohmann::json added = nlohmann::json::array();
+    const AutoBorder& ab = r.auto_border;
+    for (std::size_t i = 0; i < ab.vertex.size(); ++i) {
+        const Vec2 px(ab.uv[i].x() * in.image_width, (1 - ab.uv[i].y()) * in.image_height);  // image_to_uv inverted
+        added.push_back({{"name", ab.name[i]}, {"vertex", ab.vertex[i]}, {"image", {px.x(), px.y()}}});
+    }
+    j["auto_border"] = {{"reason", ab.reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(ab.reason)},
+                        {"added", added},
+                        {"kept_fixed", ab.vertex.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.auto_border_fixed)}};
     const MapTimings& t = r.timings_ms;
     j["timings_ms"] = {{"read", t.read},   {"triangulate", t.triangulate}, {"paths", t.paths}, {"embed", t.embed},
                        {"refine", t.refine}, {"optimise", t.optimise},     {"certify", t.certify},

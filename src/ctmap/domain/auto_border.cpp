@@ -1,0 +1,319 @@
+#include "ctmap/domain/auto_border.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
+#include <CGAL/convex_hull_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include "ctmap/border_loop.h"
+#include "ctmap/domain/feature_triangulation.h"
+#include "ctmap/domain/starter_features.h"
+#include "ctmap/errors.h"
+
+namespace ctmap {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using P2 = K::Point_2;
+using Cx = std::complex<double>;
+
+P2 point(const Vec2& v) { return P2(v.x(), v.y()); }
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+std::vector<P2> polygon(const std::vector<Vec2>& uv, const std::vector<int>& order) {
+    std::vector<P2> poly;
+    for (int i : order) poly.push_back(point(uv[i]));
+    return poly;
+}
+
+/// Interior features (those not in `border`) not strictly inside the polygon of `border`.
+std::vector<int> outside(const std::vector<Vec2>& uv, const std::vector<int>& border, std::size_t first, std::size_t last) {
+    const std::vector<P2> poly = polygon(uv, border);
+    std::vector<char> on(uv.size(), 0);
+    for (int b : border) on[b] = 1;
+    std::vector<int> out;
+    for (std::size_t i = first; i < last; ++i)
+        if (!on[i] && CGAL::bounded_side_2(poly.begin(), poly.end(), point(uv[i]), K()) != CGAL::ON_BOUNDED_SIDE)
+            out.push_back(int(i));
+    return out;
+}
+
+/// The convex polygon `poly` (counter-clockwise) clipped to the image [0, 1]^2
+/// (Sutherland-Hodgman); points on a clipping line get its coordinate exactly.
+std::vector<Vec2> clip_to_image(std::vector<Vec2> poly) {
+    for (int axis = 0; axis < 2; ++axis)
+        for (double edge : {0.0, 1.0}) {
+            auto in = [&](const Vec2& p) { return edge == 0 ? p[axis] >= 0 : p[axis] <= 1; };
+            std::vector<Vec2> out;
+            for (std::size_t i = 0; i < poly.size(); ++i) {
+                const Vec2& a = poly[i];
+                const Vec2& b = poly[(i + 1) % poly.size()];
+                if (in(a)) out.push_back(a);
+                if (in(a) != in(b)) {
+                    const double t = (edge - a[axis]) / (b[axis] - a[axis]);
+                    Vec2 x = a + t * (b - a);
+                    x[axis] = edge;
+                    x[1 - axis] = std::clamp(x[1 - axis], 0.0, 1.0);
+                    out.push_back(x);
+                }
+            }
+            poly = std::move(out);
+        }
+    return poly;
+}
+
+/// The point of the convex region `r` (counter-clockwise, `c` strictly inside) where the ray
+/// from `c` at `angle` leaves it.
+Vec2 ray_exit(const std::vector<Vec2>& r, const Vec2& c, double angle) {
+    const Vec2 d(std::cos(angle), std::sin(angle));
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        const Vec2& a = r[i];
+        const Vec2 e = r[(i + 1) % r.size()] - a;
+        const double den = cross(d, e);
+        if (std::abs(den) < 1e-300) continue;
+        const double t = cross(a - c, e) / den, s = cross(a - c, d) / den;
+        if (t > 0 && s >= -1e-12 && s <= 1 + 1e-12) best = std::min(best, t);
+    }
+    const Vec2 p = c + best * d;
+    return Vec2(std::clamp(p.x(), 0.0, 1.0), std::clamp(p.y(), 0.0, 1.0));
+}
+
+/// Distance from `c` to the nearest side of the convex region `r` (negative outside).
+double depth(const std::vector<Vec2>& r, const Vec2& c) {
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        const Vec2 e = r[(i + 1) % r.size()] - r[i];
+        if (e.norm() > 0) d = std::min(d, cross(e, c - r[i]) / e.norm());
+    }
+    return d;
+}
+
+double wrap(double a) {  // into [0, 2 pi)
+    a = std::fmod(a, 2 * M_PI);
+    return a < 0 ? a + 2 * M_PI : a;
+}
+
+/// The similarity z -> a z + b (z conjugated when `mirror`) that best fits the Tutte points of
+/// the features to their UVs, and its squared residual.
+struct Fit {
+    Cx a{0.45, 0}, b{0.5, 0.5};
+    bool mirror = false;
+    double residual = 0;
+    Cx at(const Vec2& t) const { return a * (mirror ? Cx(t.x(), -t.y()) : Cx(t.x(), t.y())) + b; }
+};
+
+Fit fit_similarity(const std::vector<Vec2>& tutte, const std::vector<int>& fv, const std::vector<Vec2>& uv, bool mirror) {
+    Fit f;
+    f.mirror = mirror;
+    const int n = int(uv.size());
+    Cx tm(0, 0), pm(0, 0);
+    std::vector<Cx> t(n), p(n);
+    for (int i = 0; i < n; ++i) {
+        const Vec2& q = tutte[fv[i]];
+        t[i] = mirror ? Cx(q.x(), -q.y()) : Cx(q.x(), q.y());
+        p[i] = Cx(uv[i].x(), uv[i].y());
+        tm += t[i] / double(n);
+        pm += p[i] / double(n);
+    }
+    double stt = 0;
+    Cx stp(0, 0);
+    for (int i = 0; i < n; ++i) {
+        stt += std::norm(t[i] - tm);
+        stp += std::conj(t[i] - tm) * (p[i] - pm);
+    }
+    // One feature, or all at one Tutte point: the disc at the starter features' size.
+    if (stt > 1e-12 && std::abs(stp / stt) > 1e-9) f.a = stp / stt;
+    f.b = pm - f.a * tm;
+    for (int i = 0; i < n; ++i) f.residual += std::norm(f.a * t[i] + f.b - p[i]);
+    return f;
+}
+
+}  // namespace
+
+std::string auto_border_reason(const std::vector<Vec2>& uv, const std::vector<int>& border,
+                               const std::vector<std::string>& names) {
+    if (border.empty()) return "no feature lies on the mesh border";
+    if (border.size() < 3) return "only " + std::to_string(border.size()) + " feature(s) lie on the mesh border";
+    const std::vector<P2> poly = polygon(uv, border);
+    if (!CGAL::is_simple_2(poly.begin(), poly.end(), K())) return "";
+    const std::vector<int> out = outside(uv, border, 0, uv.size());
+    if (out.empty()) return "";
+    std::string list;
+    for (int i : out) list += (list.empty() ? "" : ", ") + feature_label(names, i);
+    return "interior feature(s) " + list + " outside the straight polygon of the border features";
+}
+
+AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv, const std::vector<Vec2>& uv,
+                                 const std::vector<std::string>& names, const AutoBorderOptions& opt) {
+    const std::string& file = opt.features_file;
+    const std::vector<int> loop = border_loop(mesh);
+    const int nl = int(loop.size()), n = int(uv.size());
+    std::vector<int> at(mesh.num_vertices(), -1);
+    for (int i = 0; i < nl; ++i) at[loop[i]] = i;
+    std::vector<int> given;  // the given border features, in loop order
+    for (int i = 0; i < n; ++i)
+        if (at[fv[i]] >= 0) given.push_back(i);
+    std::sort(given.begin(), given.end(), [&](int a, int b) { return at[fv[a]] < at[fv[b]]; });
+    AutoBorder out;
+    out.reason = auto_border_reason(uv, given, names);
+    if (out.reason.empty()) return out;
+    const int k = int(given.size());
+    if (n == 0) throw BadInput(file, "no features: at least one is needed");
+    for (int i = 0; i < n; ++i)
+        if (at[fv[i]] < 0 && (uv[i].x() <= 0 || uv[i].x() >= 1 || uv[i].y() <= 0 || uv[i].y() >= 1))
+            throw BadInput(file, "feature " + feature_label(names, i) + " lies on the image's edge but not on the mesh "
+                                 "border: no border inside the image can hold it (move it inside, or mark a border vertex there)");
+
+    // Where the mesh border would lie: Tutte's map fitted to the features.
+    const std::vector<Vec2> tutte = tutte_map(mesh);
+    const Fit plain = fit_similarity(tutte, fv, uv, false), mirrored = fit_similarity(tutte, fv, uv, true);
+    bool mirror = mirrored.residual < plain.residual;
+    if (k >= 3) {
+        const std::vector<P2> poly = polygon(uv, given);
+        mirror = CGAL::orientation_2(poly.begin(), poly.end(), K()) == CGAL::CLOCKWISE;
+    }
+    const Fit& fit = mirror ? mirrored : plain;
+    const double sigma = mirror ? -1 : 1;
+    out.mirrored = mirror;
+
+    // R: the hull of the fitted border and of a margin around every feature, in the image.
+    std::vector<P2> cloud, hull;
+    const double r = std::abs(fit.a);
+    for (int j = 0; j < 64; ++j) {
+        const Cx z = fit.b + r * std::polar(1.0, 2 * M_PI * j / 64);
+        cloud.emplace_back(z.real(), z.imag());
+    }
+    for (const Vec2& p : uv)
+        for (int j = 0; j < 8; ++j)
+            cloud.emplace_back(p.x() + opt.margin * std::cos(M_PI * j / 4), p.y() + opt.margin * std::sin(M_PI * j / 4));
+    CGAL::convex_hull_2(cloud.begin(), cloud.end(), std::back_inserter(hull), K());
+    std::vector<Vec2> region;
+    for (const P2& p : hull) region.emplace_back(p.x(), p.y());
+    region = clip_to_image(region);
+
+    // Arc length along the loop from loop[0], for the added features' angles.
+    std::vector<double> arc(nl + 1, 0);
+    for (int i = 0; i < nl; ++i) arc[i + 1] = arc[i] + (mesh.positions[loop[(i + 1) % nl]] - mesh.positions[loop[i]]).norm();
+    auto arc_between = [&](int from, int to) {  // along the loop, from index `from` forward to `to`
+        const double d = arc[to] - arc[from];
+        return d > 0 ? d : d + arc[nl];
+    };
+
+    std::vector<Vec2> centres;
+    {
+        Vec2 all = Vec2::Zero(), inner = Vec2::Zero(), mid = Vec2::Zero();
+        int ni = 0;
+        for (int i = 0; i < n; ++i) {
+            all += uv[i] / n;
+            if (at[fv[i]] < 0) inner += uv[i], ++ni;
+        }
+        for (const Vec2& p : region) mid += p / double(region.size());
+        centres = {all, mid, Vec2(fit.b.real(), fit.b.imag())};
+        if (ni > 0) centres.insert(centres.begin() + 1, inner / ni);
+        for (int j = 0; j < 8; ++j) centres.push_back(all + 0.05 * Vec2(std::cos(0.7 + j), std::sin(0.7 + j)));
+    }
+    for (const Vec2& c : centres) {
+        if (!(depth(region, c) > 1e-6)) continue;
+        std::vector<double> theta(n, 0);
+        bool centred = true;
+        for (int i = 0; i < n; ++i) {
+            theta[i] = std::atan2(uv[i].y() - c.y(), uv[i].x() - c.x());
+            if (at[fv[i]] >= 0 && (uv[i] - c).norm() < 1e-9) centred = false;
+        }
+        if (!centred) continue;
+        // The given border features must turn once around c in the border's sense.
+        std::vector<double> gap(k, 2 * M_PI);
+        double turn = 0;
+        for (int j = 0; j < k && k > 1; ++j) {
+            gap[j] = wrap(sigma * (theta[given[(j + 1) % k]] - theta[given[j]]));
+            turn += gap[j];
+        }
+        if (k > 1 && (std::abs(turn - 2 * M_PI) > 1e-9 || *std::min_element(gap.begin(), gap.end()) <= 0)) continue;
+        // Each given border feature's notch: half as wide as the angle to the nearest feature.
+        std::vector<double> notch(k, 0.2);
+        for (int j = 0; j < k; ++j) {
+            const int b = given[j];
+            notch[j] = std::min({notch[j], 0.25 * gap[j], 0.25 * gap[(j + k - 1) % k]});
+            for (int i = 0; i < n; ++i)
+                if (i != b && (uv[i] - c).norm() > 1e-12) {
+                    const double d = wrap(theta[i] - theta[b]);
+                    notch[j] = std::min(notch[j], 0.5 * std::min(d, 2 * M_PI - d));
+                }
+        }
+        if (k > 0 && !(*std::min_element(notch.begin(), notch.end()) > 1e-9)) continue;
+
+        double phase = 0;  // with no given border feature: the fitted map's rotation around c
+        if (k == 0) {
+            Cx sum(0, 0);
+            for (int i = 0; i < nl; ++i) {
+                const Cx z = fit.at(tutte[loop[i]]);
+                const double a = std::atan2(z.imag() - c.y(), z.real() - c.x()) - sigma * 2 * M_PI * arc[i] / arc[nl];
+                sum += std::polar(1.0, a);
+            }
+            phase = std::arg(sum);
+        }
+        for (int samples = std::max(3, opt.samples);; samples *= 2) {
+            AutoBorder tried = out;
+            tried.vertex.clear();
+            tried.uv.clear();
+            std::vector<int> order;  // feature indices (given, then added as n + j) in loop order
+            // The added features along the loop from loop index `from` (exclusive) over `span`
+            // loop steps, `count` of them spread by index, at angles from `a0` to `a1` by arc.
+            auto add = [&](int from, int span, int count, double a0, double a1) {
+                const int free = span - 1;
+                count = std::min(count, free);
+                if (count <= 0) return;
+                std::vector<int> pick;
+                for (int j = 0; j < count; ++j)
+                    pick.push_back(count == 1 ? free / 2 : int(std::lround(double(j) * (free - 1) / (count - 1))));
+                const int first = (from + 1 + pick.front()) % nl, last = (from + 1 + pick.back()) % nl;
+                const double s0 = arc_between(from, first), s1 = arc_between(from, last);
+                for (int p : pick) {
+                    const int li = (from + 1 + p) % nl;
+                    const double s = arc_between(from, li);
+                    const double w = count == 1 || s1 <= s0 ? 0.5 : (s - s0) / (s1 - s0);
+                    tried.vertex.push_back(loop[li]);
+                    tried.uv.push_back(ray_exit(region, c, a0 + w * (a1 - a0)));
+                    order.push_back(n + int(tried.vertex.size()) - 1);
+                }
+            };
+            if (k == 0) {
+                const int count = std::min(samples, nl);
+                for (int j = 0; j < count; ++j) {
+                    const int li = int(std::lround(double(j) * nl / count)) % nl;
+                    tried.vertex.push_back(loop[li]);
+                    tried.uv.push_back(ray_exit(region, c, phase + sigma * 2 * M_PI * arc[li] / arc[nl]));
+                    order.push_back(n + j);
+                }
+            } else {
+                for (int j = 0; j < k; ++j) {
+                    const int b = given[j], next = given[(j + 1) % k];
+                    order.push_back(b);
+                    const int from = at[fv[b]];
+                    int span = at[fv[next]] - from;
+                    if (span <= 0) span += nl;
+                    const double a0 = theta[b] + sigma * notch[j];
+                    const double a1 = theta[b] + sigma * (gap[j] - notch[(j + 1) % k]);
+                    add(from, span, int(std::ceil(samples * gap[j] / (2 * M_PI))) + 1, a0, a1);
+                }
+            }
+            std::vector<Vec2> all = uv;
+            all.insert(all.end(), tried.uv.begin(), tried.uv.end());
+            const std::vector<P2> poly = polygon(all, order);
+            if (order.size() >= 3 && CGAL::is_simple_2(poly.begin(), poly.end(), K()) &&
+                outside(all, order, 0, uv.size()).empty())
+                return tried;
+            if (samples >= 2 * nl) break;
+        }
+    }
+    throw BadInput(file, out.reason + ", and ctmap could not place border features around them (the given border "
+                                      "features' order around the others, or too few border vertices between two "
+                                      "of them); give border features yourself, or use --border given to see the "
+                                      "straight-border rules");
+}
+
+}  // namespace ctmap
