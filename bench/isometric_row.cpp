@@ -4,9 +4,12 @@
 // relaxation, the optimiser), the same optimiser continued from there for a long run (1,000
 // iterations in all, tolerance 1e-9: the check that the default stopped at convergence), and,
 // with --arap, CGAL's unconstrained ARAP_parameterizer_3 on the same mesh timed in the same
-// process, alternating with ctmap's runs. Prints one JSON object.
+// process, alternating with ctmap's runs. Prints one JSON object. `--landmarks`: the random set
+// has no border feature, its features anywhere in the disc (issue 12, the automatic border);
+// `--features-file F`: a features file (pixels, with image_size) instead of a random set.
 //
 //   isometric_row MESH [--features N] [--twist T] [--seed S] [--runs R] [--arap] [--no-long] [--tolerance T] [--no-reuse]
+//                 [--landmarks] [--features-file F]
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
@@ -19,6 +22,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "ctmap/io/features.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
 #include "random_features.h"
@@ -74,7 +78,8 @@ int main(int argc, char** argv) {
     int features = 20, runs = 1;
     unsigned seed = 1;
     double twist = 1.0;
-    bool arap = false, long_run = true, reuse = true;
+    bool arap = false, long_run = true, reuse = true, landmarks = false;
+    std::string features_file;
     double tolerance = IsometricOptions().tolerance;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
@@ -87,10 +92,25 @@ int main(int argc, char** argv) {
         else if (a == "--no-long") long_run = false;
         else if (a == "--tolerance") tolerance = std::stod(next());
         else if (a == "--no-reuse") reuse = false;
+        else if (a == "--landmarks") landmarks = true;
+        else if (a == "--features-file") features_file = next();
     }
     try {
         const TriMesh mesh = read_mesh(path);
-        const std::vector<MapFeature> mf = ctmap::test::bench_features(mesh, features, twist, seed);
+        std::vector<MapFeature> mf;
+        if (!features_file.empty()) {
+            FeatureSet fs = read_features(features_file);
+            if (!fs.image_size) throw BadInput(features_file, "isometric_row needs \"image_size\"");
+            const int w = (*fs.image_size)[0], h = (*fs.image_size)[1];
+            resolve_units(fs, w, h);
+            mf = map_features(fs, w, h);
+        } else if (landmarks) {
+            std::mt19937 rng(seed);
+            mf = ctmap::test::map_features_of(
+                ctmap::test::random_features(mesh, tutte_map(mesh), features, 0, twist, rng, false, true));
+        } else {
+            mf = ctmap::test::bench_features(mesh, features, twist, seed);
+        }
         std::vector<double> iso_ms, paper_ms, arap_ms;
         MapResult iso;
         bool arap_ok = true;
@@ -115,6 +135,7 @@ int main(int argc, char** argv) {
         j["twist"] = twist;
         j["seed"] = seed;
         j["valid"] = iso.certificate.valid;
+        j["auto_border_added"] = iso.auto_border.vertex.size();
         j["bare"] = distortion(iso.before_refine);
         j["paper"] = distortion(iso.after_relax);
         j["isometric"] = distortion(iso.certificate.distortion);

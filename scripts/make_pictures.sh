@@ -33,4 +33,6 @@ while read -r name mesh features image; do
 done <<'CASES'
 nefertiti nefertiti.off nefertiti_astronaut.json astronaut.png
 lion-head lion-head.off lion-head_chelsea.json chelsea.png
+nefertiti-landmarks nefertiti.off nefertiti_landmarks.json astronaut.png
+lion-head-landmarks lion-head.off lion-head_landmarks.json chelsea.png
 CASES

@@ -27,9 +27,11 @@ struct RandomFeatures {
 
 /// Picks `n_border` border features and up to `n_total - n_border` interior ones, image points
 /// from `tutte` twisted by `strength`; interior features are kept only clear of the border
-/// polygon (the input rule "interior features inside the border polygon").
+/// polygon (the input rule "interior features inside the border polygon") unless
+/// `anywhere_inside_the_disc` (issue 12: the automatic border must hold them).
 inline RandomFeatures random_features(const TriMesh& mesh, const std::vector<Vec2>& tutte, int n_total, int n_border,
-                                      double strength, std::mt19937& rng, bool mirror = false) {
+                                      double strength, std::mt19937& rng, bool mirror = false,
+                                      bool anywhere_inside_the_disc = false) {
     WorkMesh wm(mesh);
     std::vector<int> loop = wm.border_loop();
     RandomFeatures out;
@@ -74,7 +76,7 @@ inline RandomFeatures random_features(const TriMesh& mesh, const std::vector<Vec
     for (int v : interior) {
         if (int(out.vertex.size()) >= n_total) break;
         const Vec2 q = image(v);
-        if (!inside(q)) continue;
+        if (!anywhere_inside_the_disc && !inside(q)) continue;
         out.vertex.push_back(v);
         out.uv.push_back(q);
     }

@@ -273,13 +273,33 @@ TEST(BadInputReliability, ValidateGivesTheVerdictAndMessageOfMap) {
     write_file(d / "outside.json", head + R"({"name": "a", "vertex": 0, "image": [100, 100]},
         {"name": "b", "vertex": 8, "image": [400, 100]}, {"name": "c", "vertex": 7, "image": [400, 400]},
         {"name": "e", "vertex": 298, "image": [100, 400]}, {"name": "i", "vertex": 116, "image": [500, 500]}]})");
+    // With --border given (the paper's rules) all three are refused; the default --border auto
+    // places border features for the first and the third (tests/test_auto_border.cpp), and must
+    // still refuse the second, whose given border features cross.
     for (const char* name : {"none_on_border.json", "order.json", "outside.json"}) {
-        const RunResult v = run_ctmap("validate " + q(d / "in.off") + " " + q(d / name));
-        const RunResult m = run_ctmap("map " + q(d / "in.off") + " " + q(d / name) + " -o " + q(d / "out.obj") + " -q");
+        const RunResult v = run_ctmap("validate " + q(d / "in.off") + " " + q(d / name) + " --border given");
+        const RunResult m =
+            run_ctmap("map " + q(d / "in.off") + " " + q(d / name) + " -o " + q(d / "out.obj") + " -q --border given");
         EXPECT_EQ(v.code, kExitBadInput) << name << "\n" << v.out;
         EXPECT_EQ(m.code, kExitBadInput) << name << "\n" << m.out;
         EXPECT_EQ(v.out, m.out) << name;  // the same message, word for word
         EXPECT_NE(v.out.find(d / name), std::string::npos) << v.out;
+    }
+    {
+        const RunResult v = run_ctmap("validate " + q(d / "in.off") + " " + q(d / "order.json"));
+        const RunResult m = run_ctmap("map " + q(d / "in.off") + " " + q(d / "order.json") + " -o " + q(d / "out.obj") + " -q");
+        EXPECT_EQ(v.code, kExitBadInput) << v.out;
+        EXPECT_EQ(v.out, m.out);
+        EXPECT_NE(v.out.find("cross in the image"), std::string::npos) << v.out;
+    }
+    for (const char* name : {"none_on_border.json", "outside.json"}) {
+        const RunResult v = run_ctmap("validate " + q(d / "in.off") + " " + q(d / name));
+        EXPECT_EQ(v.code, 0) << name << "\n" << v.out;
+        EXPECT_NE(v.out.find("`ctmap map` adds"), std::string::npos) << v.out;
+        const RunResult m = run_ctmap("map " + q(d / "in.off") + " " + q(d / name) + " -o " + q(d / "out.obj"));
+        EXPECT_EQ(m.code, 0) << name << "\n" << m.out;
+        EXPECT_NE(m.out.find("border: added"), std::string::npos) << m.out;
+        EXPECT_NE(m.out.find("certificate: valid"), std::string::npos) << m.out;
     }
     const RunResult ok = run_ctmap("validate " + q(d / "in.off") + " " + q(d / "f.json"));
     EXPECT_EQ(ok.code, 0) << ok.out;

@@ -289,6 +289,9 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
         RelaxOptions ropt = options.relax;
         const bool isometric = options.refine_mode == RefineMode::isometric;
         if (isometric && options.isometric.border == BorderMode::fixed) ropt.move_border = false;
+        // The border stays in the image (or in the embedding's box, if that reaches outside).
+        ropt.keep_in_box = !isometric || options.isometric.keep_in_box;
+        for (const Vec2& p : r.uv) ropt.box_lo = ropt.box_lo.cwiseMin(p), ropt.box_hi = ropt.box_hi.cwiseMax(p);
         r.relax_stats = relax(r.cut.mesh, r.uv, r.cut.feature_vertex, ropt);
         r.timings_ms.refine = ms_since(t0);
         if (isometric) {

@@ -424,6 +424,12 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
                 if (h == 0 && !energy_ok(uv[v] + omega * std::ldexp(1.0, -options.max_halvings) * d)) break;
                 continue;
             }
+            if (rings.border[v] && options.keep_in_box &&
+                !(p.x() >= options.box_lo.x() && p.y() >= options.box_lo.y() && p.x() <= options.box_hi.x() &&
+                  p.y() <= options.box_hi.y())) {
+                ++tally.border_rejections;
+                continue;
+            }
             if (rings.border[v] && options.check_border && !border_ok(v, p)) {
                 ++tally.border_rejections;
                 continue;

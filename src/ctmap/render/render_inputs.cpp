@@ -7,6 +7,7 @@
 
 #include "ctmap/certify/certificate.h"
 #include "ctmap/cut/cut_mesh.h"
+#include "ctmap/domain/auto_border.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/glb_io.h"
 #include "ctmap/io/image.h"
@@ -99,8 +100,17 @@ RenderInputs read_render_inputs(const RenderFiles& files, const std::vector<Rend
         for (const Feature& f : in.features.features) names.push_back(f.name);
         TriangulateOptions topt;
         topt.features_file = files.features;
-        in.triangulation =
-            triangulate_features(in.feature_uv, border_features(in.mesh.mesh, in.feature_vertex), names, topt);
+        // Where the features cannot make the paper's border, the border features `ctmap map
+        // --border auto` places (fitted again on this mesh, so they can differ a little).
+        AutoBorderOptions aopt;
+        aopt.features_file = files.features;
+        const AutoBorder added = place_border_features(in.mesh.mesh, in.feature_vertex, in.feature_uv, names, aopt);
+        std::vector<int> fv = in.feature_vertex;
+        std::vector<Vec2> uv = in.feature_uv;
+        fv.insert(fv.end(), added.vertex.begin(), added.vertex.end());
+        uv.insert(uv.end(), added.uv.begin(), added.uv.end());
+        names.resize(fv.size());
+        in.triangulation = triangulate_features(uv, border_features(in.mesh.mesh, fv), names, topt);
     }
     return in;
 }
