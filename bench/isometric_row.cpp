@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "ctmap/errors.h"
 #include "ctmap/io/features.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"

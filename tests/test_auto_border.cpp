@@ -41,6 +41,14 @@ void expect_mapped(const TriMesh& mesh, const std::vector<MapFeature>& features,
         return;
     }
     EXPECT_FALSE(r.auto_border.vertex.empty()) << what << ": nothing added, yet the paper's rules refuse the set";
+    // `ctmap validate` (check_feature_layout) accepts the set and names the same border features.
+    try {
+        const FeatureLayout layout = check_feature_layout(mesh, features);
+        EXPECT_EQ(layout.auto_border.vertex, r.auto_border.vertex) << what;
+        EXPECT_EQ(layout.auto_border.uv, r.auto_border.uv) << what;
+    } catch (const Error& e) {
+        ADD_FAILURE() << what << ": validate refused what map mapped: " << e.what();
+    }
     counts.added += int(r.auto_border.vertex.size());
     const Certificate again = certify(r.textured(), r.cut.feature_vertex, r.feature_uv);
     EXPECT_TRUE(again.valid) << what << ": " << again.flipped << " flipped, error " << again.feature_max_error;

@@ -265,7 +265,7 @@ const Case kFeatureCases[] = {
     {"NotAnObject", [](const TempDir& d) { return validate_features(d, "[1, 2, 3]", {"JSON object"}); }},
     {"MissingFeaturesArray",
      [](const TempDir& d) { return validate_features(d, R"({"units": "pixels"})", {"missing field \"features\""}); }},
-    {"EmptyFeaturesArray", [](const TempDir& d) { return validate_features(d, features_json(""), {"at least 3"}); }},
+    {"EmptyFeaturesArray", [](const TempDir& d) { return validate_features(d, features_json(""), {"at least one"}); }},
     {"FeatureMissingFields",
      [](const TempDir& d) {
          return validate_features(d,
@@ -348,11 +348,13 @@ const Case kFeatureCases[] = {
              d, features_json(three_with(R"({"name": "c", "point": [1000, 1000, 1000], "image": [50, 60]})")),
              {"feature 'c'", "away from the surface", "nefertiti.off"});
      }},
-    {"FewerThanThreeFeatures",
+    {"FewerThanThreeBorderFeaturesWithTheBorderGiven",  // --border auto would place the others
      [](const TempDir& d) {
-         return validate_features(
+         CliRun run = validate_features(
              d, features_json(R"({"name": "a", "vertex": 0, "image": [1, 2]}, {"name": "b", "vertex": 1, "image": [3, 4]})"),
-             {"only 2 feature(s)", "at least 3"});
+             {"only 2 feature(s) lie on the mesh border", "at least 3"});
+         run.args += " --border given";
+         return run;
      }},
     {"ImageSizeNotPositive",
      [](const TempDir& d) {
@@ -436,6 +438,23 @@ TEST_P(BadInputCli, IsRejected) {
     const CliRun run = GetParam().make(dir);
     expect_rejected(dir, run);
     if (run.keywords.empty()) ADD_FAILURE() << "a case must name the problem it expects";
+}
+
+// Issue 12, must-show 5: on every case `validate` refuses, `map` with the same inputs refuses
+// with the same exit code and the same message, word for word (both with the default
+// --border auto), and writes nothing.
+TEST_P(BadInputCli, MapGivesTheVerdictAndMessageOfValidate) {
+    TempDir dir;
+    const CliRun run = GetParam().make(dir);
+    if (run.args.rfind("validate ", 0) != 0) GTEST_SKIP() << "not a validate case";
+    const RunResult v = run_ctmap(run.args);
+    CliRun as_map = run;
+    as_map.args = "map " + run.args.substr(9) + " -o " + q(dir / "out.obj") + " -q";
+    const RunResult m = run_ctmap(as_map.args);
+    EXPECT_EQ(v.code, kExitBadInput) << v.out;
+    EXPECT_EQ(m.code, v.code) << m.out;
+    EXPECT_EQ(m.out, v.out);
+    for (const char* out : {"out.obj", "out.mtl"}) EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
 }
 
 std::string case_name(const ::testing::TestParamInfo<Case>& info) { return info.param.name; }

@@ -4,6 +4,8 @@
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/convex_hull_2.h>
 
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -132,6 +134,66 @@ Fit fit_similarity(const std::vector<Vec2>& tutte, const std::vector<int>& fv, c
     return f;
 }
 
+/// Least squares conformal map (Lévy et al. 2002) of `mesh` with the features pinned at their
+/// UVs (x negated when `mirror`, and back: a conformal map cannot mirror): where the mesh border
+/// would lie if the features alone decided the map. Needs two or more features; empty if the
+/// solve fails. Per face, in a local frame z of its 3D triangle, the Cauchy-Riemann residual
+/// sum_j (z_{j+2} - z_{j+1}) U_j / sqrt(area) is a complex row; free rows are solved in the
+/// least-squares sense (normal equations, sparse LDL^T).
+std::vector<Vec2> pinned_lscm(const TriMesh& mesh, const std::vector<int>& fv, const std::vector<Vec2>& uv, bool mirror) {
+    const int nv = mesh.num_vertices();
+    std::vector<int> pin(nv, -1), index(nv, -1);
+    for (std::size_t i = 0; i < fv.size(); ++i) pin[fv[i]] = int(i);
+    int m = 0;
+    for (int v = 0; v < nv; ++v)
+        if (pin[v] < 0) index[v] = m++;
+    auto pinned = [&](int v) { return Cx(mirror ? -uv[pin[v]].x() : uv[pin[v]].x(), uv[pin[v]].y()); };
+    std::vector<Eigen::Triplet<double>> trip;
+    std::vector<double> rhs_re, rhs_im;
+    int rows = 0;
+    for (const Tri& t : mesh.faces) {
+        const Vec3 &p0 = mesh.positions[t[0]], &p1 = mesh.positions[t[1]], &p2 = mesh.positions[t[2]];
+        const Vec3 e1 = p1 - p0, e2 = p2 - p0, n = e1.cross(e2);
+        const double area2 = n.norm();
+        if (!(area2 > 0) || !(e1.norm() > 0)) continue;
+        const Vec3 x = e1 / e1.norm(), y = n.cross(x) / area2;
+        const Cx z[3] = {Cx(0, 0), Cx(e1.norm(), 0), Cx(e2.dot(x), e2.dot(y))};
+        const double w = 1 / std::sqrt(0.5 * area2);
+        Cx known(0, 0);
+        for (int j = 0; j < 3; ++j) {
+            const Cx W = w * (z[(j + 2) % 3] - z[(j + 1) % 3]);
+            const int v = t[j];
+            if (pin[v] >= 0) {
+                known += W * pinned(v);
+                continue;
+            }
+            // W U = (a u - b v) + i (a v + b u): u in column index, v in column m + index.
+            trip.emplace_back(rows, index[v], W.real());
+            trip.emplace_back(rows, m + index[v], -W.imag());
+            trip.emplace_back(rows + 1, index[v], W.imag());
+            trip.emplace_back(rows + 1, m + index[v], W.real());
+        }
+        rhs_re.push_back(-known.real());
+        rhs_im.push_back(-known.imag());
+        rows += 2;
+    }
+    Eigen::SparseMatrix<double> A(rows, 2 * m);
+    A.setFromTriplets(trip.begin(), trip.end());
+    Eigen::VectorXd b(rows);
+    for (int r = 0; r < rows / 2; ++r) b[2 * r] = rhs_re[r], b[2 * r + 1] = rhs_im[r];
+    const Eigen::SparseMatrix<double> M = A.transpose() * A;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(M);
+    if (solver.info() != Eigen::Success) return {};
+    const Eigen::VectorXd x = solver.solve(A.transpose() * b);
+    if (solver.info() != Eigen::Success || !x.allFinite()) return {};
+    std::vector<Vec2> out(nv);
+    for (int v = 0; v < nv; ++v) {
+        const Cx u = pin[v] >= 0 ? pinned(v) : Cx(x[index[v]], x[m + index[v]]);
+        out[v] = Vec2(mirror ? -u.real() : u.real(), u.imag());
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string auto_border_reason(const std::vector<Vec2>& uv, const std::vector<int>& border,
@@ -180,13 +242,23 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
     const double sigma = mirror ? -1 : 1;
     out.mirrored = mirror;
 
+    // Where the mesh border would lie: the pinned LSCM map with two features or more (conformal,
+    // so the features' layout sets its size and turn), else Tutte's map fitted to the feature.
+    std::vector<Vec2> fitted;
+    if (n >= 2) {
+        const std::vector<Vec2> lscm = pinned_lscm(mesh, fv, uv, mirror);
+        if (!lscm.empty())
+            for (int v : loop) fitted.push_back(lscm[v]);
+    }
+    if (fitted.empty())
+        for (int v : loop) {
+            const Cx z = fit.at(tutte[v]);
+            fitted.emplace_back(z.real(), z.imag());
+        }
+
     // R: the hull of the fitted border and of a margin around every feature, in the image.
     std::vector<P2> cloud, hull;
-    const double r = std::abs(fit.a);
-    for (int j = 0; j < 64; ++j) {
-        const Cx z = fit.b + r * std::polar(1.0, 2 * M_PI * j / 64);
-        cloud.emplace_back(z.real(), z.imag());
-    }
+    for (const Vec2& p : fitted) cloud.push_back(point(p));
     for (const Vec2& p : uv)
         for (int j = 0; j < 8; ++j)
             cloud.emplace_back(p.x() + opt.margin * std::cos(M_PI * j / 4), p.y() + opt.margin * std::sin(M_PI * j / 4));
@@ -212,7 +284,9 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
             if (at[fv[i]] < 0) inner += uv[i], ++ni;
         }
         for (const Vec2& p : region) mid += p / double(region.size());
-        centres = {all, mid, Vec2(fit.b.real(), fit.b.imag())};
+        Vec2 middle = Vec2::Zero();
+        for (const Vec2& p : fitted) middle += p / double(fitted.size());
+        centres = {all, mid, middle};
         if (ni > 0) centres.insert(centres.begin() + 1, inner / ni);
         for (int j = 0; j < 8; ++j) centres.push_back(all + 0.05 * Vec2(std::cos(0.7 + j), std::sin(0.7 + j)));
     }
@@ -250,8 +324,8 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
         if (k == 0) {
             Cx sum(0, 0);
             for (int i = 0; i < nl; ++i) {
-                const Cx z = fit.at(tutte[loop[i]]);
-                const double a = std::atan2(z.imag() - c.y(), z.real() - c.x()) - sigma * 2 * M_PI * arc[i] / arc[nl];
+                const Vec2& z = fitted[i];
+                const double a = std::atan2(z.y() - c.y(), z.x() - c.x()) - sigma * 2 * M_PI * arc[i] / arc[nl];
                 sum += std::polar(1.0, a);
             }
             phase = std::arg(sum);

@@ -6,9 +6,11 @@
 /// features have no border. Here ctmap places border features itself, on border vertices of the
 /// mesh, so that the exact pipeline (§2.3-2.4) runs as for a user's own border.
 ///
-/// How: Tutte's map of the mesh (domain/starter_features.h) fitted to the features by the
-/// similarity (or mirror similarity) that fits them best gives where the mesh border would lie in
-/// the image; the region R = the convex hull of that fitted border and of a margin around every
+/// How: a least squares conformal map of the mesh with the features pinned at their UVs (with a
+/// single feature: Tutte's map, domain/starter_features.h, moved onto it by a similarity) gives
+/// where the mesh border would lie in the image; whether the image is mirrored comes from the
+/// given border features' polygon, or else from which of the similarity and the mirror
+/// similarity fits Tutte's map to the features better. The region R = the convex hull of that fitted border and of a margin around every
 /// feature, clipped to the image, bounds the new border. The border polygon is star-shaped around
 /// a centre c inside R: the given border features where they are, each with a narrow notch
 /// reaching out to ∂R, and between them the added ones on ∂R at angles that follow the mesh

@@ -149,7 +149,7 @@ FeatureSet parse_features(const std::string& text, const std::string& path) {
 
     if (!doc.contains("features")) problems.add("missing field \"features\" (an array of features)");
     else if (!doc["features"].is_array()) problems.add("\"features\" must be an array");
-    else if (doc["features"].empty()) problems.add("\"features\" is empty: at least 3 features are needed");
+    else if (doc["features"].empty()) problems.add("\"features\" is empty: at least one feature is needed");
 
     if (doc.contains("features") && doc["features"].is_array()) {
         int index = 0;
@@ -215,8 +215,6 @@ FeatureSet parse_features(const std::string& text, const std::string& path) {
             problems.add("features " + named(it->second) + " and " + named(f.name) + " have the same image point " +
                          fmt(f.image));
     }
-    if (out.features.size() < 3)
-        problems.add("only " + std::to_string(out.features.size()) + " feature(s): at least 3 are needed");
     if (out.units == "uv")
         for (const Feature& f : out.features)
             if (f.image.x() < 0 || f.image.x() > 1 || f.image.y() < 0 || f.image.y() > 1)
