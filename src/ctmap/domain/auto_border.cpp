@@ -43,12 +43,14 @@ std::vector<int> outside(const std::vector<Vec2>& uv, const std::vector<int>& bo
     return out;
 }
 
-/// The convex polygon `poly` (counter-clockwise) clipped to the image [0, 1]^2
-/// (Sutherland-Hodgman); points on a clipping line get its coordinate exactly.
-std::vector<Vec2> clip_to_image(std::vector<Vec2> poly) {
+/// The convex polygon `poly` (counter-clockwise) clipped to the image inset by `inset` on every
+/// side, [inset, 1 - inset]^2 (Sutherland-Hodgman); points on a clipping line get its coordinate
+/// exactly.
+std::vector<Vec2> clip_to_image(std::vector<Vec2> poly, double inset) {
+    const double lo = inset, hi = 1 - inset;
     for (int axis = 0; axis < 2; ++axis)
-        for (double edge : {0.0, 1.0}) {
-            auto in = [&](const Vec2& p) { return edge == 0 ? p[axis] >= 0 : p[axis] <= 1; };
+        for (double edge : {lo, hi}) {
+            auto in = [&](const Vec2& p) { return edge == lo ? p[axis] >= lo : p[axis] <= hi; };
             std::vector<Vec2> out;
             for (std::size_t i = 0; i < poly.size(); ++i) {
                 const Vec2& a = poly[i];
@@ -58,7 +60,7 @@ std::vector<Vec2> clip_to_image(std::vector<Vec2> poly) {
                     const double t = (edge - a[axis]) / (b[axis] - a[axis]);
                     Vec2 x = a + t * (b - a);
                     x[axis] = edge;
-                    x[1 - axis] = std::clamp(x[1 - axis], 0.0, 1.0);
+                    x[1 - axis] = std::clamp(x[1 - axis], lo, hi);
                     out.push_back(x);
                 }
             }
@@ -265,7 +267,14 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
     CGAL::convex_hull_2(cloud.begin(), cloud.end(), std::back_inserter(hull), K());
     std::vector<Vec2> region;
     for (const P2& p : hull) region.emplace_back(p.x(), p.y());
-    region = clip_to_image(region);
+    // Inset from the image's edges: a border vertex on (or a hair from) the image's edge would
+    // be frozen there, or pressed by the free border's barrier, in the optimiser. The inset is a
+    // hundredth of the image, less where a feature off the mesh border is closer to the edge.
+    double inset = 0.01;
+    for (int i = 0; i < n; ++i)
+        if (at[fv[i]] < 0)
+            inset = std::min({inset, 0.5 * uv[i].x(), 0.5 * uv[i].y(), 0.5 * (1 - uv[i].x()), 0.5 * (1 - uv[i].y())});
+    region = clip_to_image(region, inset);
 
     // Arc length along the loop from loop[0], for the added features' angles.
     std::vector<double> arc(nl + 1, 0);

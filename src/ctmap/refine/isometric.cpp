@@ -358,7 +358,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     // gradient is new and the factorisation is reused, which is a descent direction still (the
     // stale Hessian is positive definite) and costs a solve instead of a factorisation.
     bool refresh = true;
-    int stale = 0;
+    int stale = 0, stalled = 0;
     double fresh_gain = 0;
     for (int it = 0; it < o.max_iterations;) {
         const double e0 = objective;
@@ -509,6 +509,12 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         if (model_converged) {
             stats.stop = "tolerance";
             stats.converged = true;
+            break;
+        }
+        // Fresh Newton steps that move nothing, ten in a row: no use going on.
+        stalled = refresh && !(gain > 1e-12 * e0) ? stalled + 1 : refresh ? 0 : stalled;
+        if (stalled >= 10) {
+            stats.stop = "stalled";
             break;
         }
         if (holds > 0 && small) {  // the border is in contact with itself and only creeps on

@@ -381,6 +381,14 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
         return true;
     };
 
+    // With keep_in_box: how far a point is inside the box (negative outside), and how far a border
+    // vertex must stay (or, if it starts nearer, must not come nearer).
+    const double wall_gap = 1e-3 * (options.box_hi - options.box_lo).maxCoeff();
+    auto wall_distance = [&](const Vec2& p) {
+        return std::min({p.x() - options.box_lo.x(), p.y() - options.box_lo.y(), options.box_hi.x() - p.x(),
+                         options.box_hi.y() - p.y()});
+    };
+
     // Over-relaxation only with the guard: without it nothing stops an overshooting sweep from
     // growing (the virtual-image rows are affine, not convex; nefertiti's energy went to 1e19).
     const double omega = options.energy_guard ? options.over_relaxation : 1.0;
@@ -424,9 +432,7 @@ RelaxStats relax(const TriMesh& mesh, std::vector<Vec2>& uv, const std::vector<i
                 if (h == 0 && !energy_ok(uv[v] + omega * std::ldexp(1.0, -options.max_halvings) * d)) break;
                 continue;
             }
-            if (rings.border[v] && options.keep_in_box &&
-                !(p.x() >= options.box_lo.x() && p.y() >= options.box_lo.y() && p.x() <= options.box_hi.x() &&
-                  p.y() <= options.box_hi.y())) {
+            if (rings.border[v] && options.keep_in_box && wall_distance(p) < std::min(wall_gap, wall_distance(uv[v]))) {
                 ++tally.border_rejections;
                 continue;
             }

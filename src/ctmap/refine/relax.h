@@ -35,8 +35,9 @@ struct RelaxOptions {
     /// edges). Only tests switch it off, to show what it prevents.
     bool check_border = true;
     /// Keep the border vertices in the rectangle [box_lo, box_hi] (map_texture: the image,
-    /// [0, 1]^2, widened to hold the starting map): a move that would leave it is halved like one
-    /// that would flip. Off by default (a bare UV map has no image).
+    /// [0, 1]^2, widened to hold the starting map), and a thousandth of its size off its edges
+    /// (the optimiser's barrier after the relaxation is steep there): a move that would go nearer
+    /// is halved like one that would flip. Off by default (a bare UV map has no image).
     bool keep_in_box = false;
     Vec2 box_lo{0, 0}, box_hi{1, 1};
     /// Beyond the paper: take a move (or a shortened one) only if it does not raise the
