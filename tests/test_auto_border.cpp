@@ -14,6 +14,7 @@
 
 #include "ctmap/border_loop.h"
 #include "ctmap/domain/auto_border.h"
+#include "ctmap/domain/starter_features.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
@@ -144,6 +145,49 @@ TEST(AutoBorder, InteriorFeaturesOutsideTheBorderPolygonMushroom) { run_outside(
 TEST(AutoBorder, InteriorFeaturesOutsideTheBorderPolygonLionHead) { run_outside("lion-head.off", 20, 1213); }
 TEST(AutoBorder, InteriorFeaturesOutsideTheBorderPolygonMannequinDevil) { run_outside("mannequin-devil.off", 20, 1214); }
 TEST(AutoBorder, InteriorFeaturesOutsideTheBorderPolygonThreePeaks) { run_outside("three_peaks.off", 20, 1215); }
+
+}  // namespace
+}  // namespace ctmap::test
+
+namespace ctmap::test {
+namespace {
+
+// Issue 12: `starter-features` spreads its landmarks over the image (Tutte's map alone crowded
+// them into a 40-pixel patch in the middle on curved meshes) and writes landmarks only with
+// --border 0; both kinds of starter set map, and the set with border features also holds under
+// the paper's rules (--border given).
+TEST(AutoBorder, StarterLandmarksSpreadOverTheImageAndMap) {
+    for (const char* name : {"nefertiti.off", "mushroom.off", "lion-head.off"}) {
+        const TriMesh mesh = read_mesh(data(std::string("meshes/") + name));
+        for (int border : {0, 8}) {
+            StarterOptions so;
+            so.border = border;
+            so.interior = 12;
+            const FeatureSet fs = starter_features(mesh, 512, 512, so);
+            const std::string what = std::string(name) + ", border " + std::to_string(border);
+            std::vector<MapFeature> features = map_features(fs, 512, 512);
+            double spread = 0;  // the largest distance between two landmarks, in pixels
+            int landmarks = 0;
+            const std::vector<int> loop = border_loop(mesh);
+            for (std::size_t i = 0; i < fs.features.size(); ++i) {
+                if (std::find(loop.begin(), loop.end(), fs.features[i].vertex) != loop.end()) continue;
+                ++landmarks;
+                for (std::size_t j = 0; j < i; ++j)
+                    if (std::find(loop.begin(), loop.end(), fs.features[j].vertex) == loop.end())
+                        spread = std::max(spread, (fs.features[i].image - fs.features[j].image).norm());
+            }
+            EXPECT_EQ(landmarks, 12) << what;
+            EXPECT_EQ(int(fs.features.size()), 12 + border) << what;
+            EXPECT_GT(spread, 200.0) << what << ": the landmarks crowd together";
+            MapOptions opt;
+            opt.refine_mode = RefineMode::paper;
+            const MapResult r = map_texture(mesh, features, opt);
+            EXPECT_TRUE(r.certificate.valid) << what;
+            EXPECT_EQ(r.auto_border.vertex.empty(), border > 0) << what;
+            if (border > 0) EXPECT_NO_THROW(check_feature_layout(mesh, features, "", -1, false)) << what;
+        }
+    }
+}
 
 }  // namespace
 }  // namespace ctmap::test

@@ -26,7 +26,10 @@ Command add_starter_command(CLI::App& app) {
     sub->add_option("MESH", a->mesh, "mesh file, a topological disc")->required();
     sub->add_option("--image", a->image, "the image the features are placed on (PNG/JPEG)")->required();
     sub->add_option("-o,--output", a->output, "features file to write (.json)")->required();
-    sub->add_option("--border", a->options.border, "features on the mesh border")->capture_default_str()->check(CLI::Range(3, 1000));
+    sub->add_option("--border", a->options.border,
+                    "features on the mesh border (0: landmarks only; `ctmap map` then places the border)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
     sub->add_option("--interior", a->options.interior, "interior features")->capture_default_str()->check(CLI::Range(0, 100000));
     return {sub, [a] {
                 check_outputs({{a->mesh, "the mesh"}, {a->image, "the image"}}, {{a->output, "the features file (-o)"}});

@@ -54,8 +54,41 @@ std::vector<Vec2> tutte_map(const TriMesh& mesh) {
     return uv;
 }
 
+std::vector<Vec2> spread_radially(const TriMesh& mesh, std::vector<Vec2> disc) {
+    const int n = mesh.num_vertices();
+    std::vector<double> area(n, 0);
+    for (const Tri& t : mesh.faces) {
+        const double a = (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]).norm();
+        for (int v : t) area[v] += a / 6;
+    }
+    std::vector<int> order(n);
+    for (int v = 0; v < n; ++v) order[v] = v;
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return disc[a].norm() < disc[b].norm(); });
+    double total = 0;
+    for (double a : area) total += a;
+    if (!(total > 0)) return disc;
+    // f(r): the square root of the area share inside radius r, made strictly increasing (the
+    // half of a vertex's own share, so ties and zero areas still get distinct radii) and 1 on
+    // the circle, where Tutte put the border.
+    double below = 0;
+    std::vector<double> f(n);
+    for (int i = 0; i < n; ++i) {
+        const int v = order[i];
+        f[v] = std::sqrt(std::clamp((below + 0.5 * area[v] + 1e-12 * (i + 1)) / (total + 1e-12 * (n + 1)), 0.0, 1.0));
+        below += area[v];
+    }
+    for (int v = 0; v < n; ++v) {
+        const double r = disc[v].norm();
+        if (r >= 1 - 1e-12) continue;  // the border stays on the circle
+        if (r > 0) disc[v] *= std::min(f[v], 1 - 1e-9) / r;
+    }
+    return disc;
+}
+
 FeatureSet starter_features(const TriMesh& mesh, int width, int height, const StarterOptions& opt) {
-    const std::vector<Vec2> disc = tutte_map(mesh);
+    // Tutte's map spread radially so that the 3D area is even over the disc: Tutte's own crowds
+    // the interior of a curved mesh into the middle (landmarks 40 pixels apart on a 512 image).
+    const std::vector<Vec2> disc = spread_radially(mesh, tutte_map(mesh));
     const std::vector<int> loop = border_loop(mesh);
     FeatureSet fs;
     fs.image_size = std::array<int, 2>{width, height};
@@ -67,7 +100,7 @@ FeatureSet starter_features(const TriMesh& mesh, int width, int height, const St
     for (std::size_t i = 0; i + 1 < loop.size(); ++i)
         acc.push_back(acc.back() + (mesh.positions[loop[i + 1]] - mesh.positions[loop[i]]).norm());
     const double total = acc.back() + (mesh.positions[loop.front()] - mesh.positions[loop.back()]).norm();
-    const int nb = std::clamp(opt.border, 3, int(loop.size()));
+    const int nb = std::clamp(opt.border, 0, int(loop.size()));
     std::vector<int> chosen;
     for (int k = 0; k < nb; ++k) {
         const double s = total * k / nb;
@@ -81,7 +114,9 @@ FeatureSet starter_features(const TriMesh& mesh, int width, int height, const St
     // disc of radius 0.85 (the border features' polygon contains it for 8 or more of them).
     std::vector<char> on_border(mesh.num_vertices(), 0);
     for (int v : loop) on_border[v] = 1;
-    const double inner = nb >= 8 ? 0.85 : 0.4;
+    // With border features, the interior ones stay inside their polygon (so that the set also
+    // holds with --border given); landmarks only (border 0) lie anywhere inside the disc.
+    const double inner = nb == 0 ? 0.97 : nb >= 8 ? 0.85 : 0.4;
     std::vector<int> candidates;
     for (int v = 0; v < mesh.num_vertices(); ++v)
         if (!on_border[v] && disc[v].norm() < inner) candidates.push_back(v);

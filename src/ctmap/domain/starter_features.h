@@ -16,15 +16,21 @@ namespace ctmap {
 /// \pre `mesh` is a manifold disc. \throw SolverError if the sparse factorization fails.
 std::vector<Vec2> tutte_map(const TriMesh& mesh);
 
+/// `disc` (Tutte's map of `mesh`) with every interior vertex moved along its ray so that the disc
+/// within radius r holds the share r^2 of the mesh's 3D area: still one-to-one (a monotone radial
+/// map), the border still on the unit circle, and the interior no longer crowded in the middle.
+/// \pre disc.size() == mesh.num_vertices(), every point in the closed unit disc.
+std::vector<Vec2> spread_radially(const TriMesh& mesh, std::vector<Vec2> disc);
+
 /// Options of `starter_features`.
 struct StarterOptions {
-    int border = 8;     ///< features on the mesh border, equally spaced by arc length
+    int border = 8;     ///< features on the mesh border, equally spaced by arc length (0: landmarks only)
     int interior = 12;  ///< interior features, spread by farthest-point sampling in 3D
     double margin = 0.05;  ///< the ellipse stays this fraction of the image size inside it
 };
 
 /// A feasible features set for `mesh` on a `width` x `height` image (pixels, DESIGN §4).
-/// \pre `mesh` is a manifold disc with at least 3 border vertices; width, height > 0.
+/// \pre `mesh` is a manifold disc; width, height > 0.
 FeatureSet starter_features(const TriMesh& mesh, int width, int height, const StarterOptions& options = {});
 
 }  // namespace ctmap
