@@ -356,6 +356,13 @@ const Case kFeatureCases[] = {
          run.args += " --border given";
          return run;
      }},
+    {"LandmarkOnTheImageEdge",  // --border auto cannot put a border around a point on the image's edge
+     [](const TempDir& d) {
+         return validate_features(
+             d, features_json(R"({"name": "a", "vertex": 100, "image": [0, 100]}, {"name": "b", "vertex": 150, "image": [300, 120]},
+                                 {"name": "c", "vertex": 116, "image": [200, 300]})"),
+             {"feature 'a' lies on the image's edge but not on the mesh border"});
+     }},
     {"ImageSizeNotPositive",
      [](const TempDir& d) {
          return validate_features(d, features_json(kThreeFeatures, R"("image_size": [512, 0])"), {"\"image_size\""});
