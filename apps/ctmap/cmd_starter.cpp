@@ -32,6 +32,8 @@ Command add_starter_command(CLI::App& app) {
         ->check(CLI::Range(0, 1000));
     sub->add_option("--interior", a->options.interior, "interior features")->capture_default_str()->check(CLI::Range(0, 100000));
     return {sub, [a] {
+                if (a->options.border + a->options.interior < 1)
+                    throw BadInput(a->output, "--border 0 --interior 0 asks for no feature at all");
                 check_outputs({{a->mesh, "the mesh"}, {a->image, "the image"}}, {{a->output, "the features file (-o)"}});
                 const TriMesh mesh = read_mesh(a->mesh);
                 require_disc(compute_topology(mesh), a->mesh);

@@ -68,7 +68,8 @@ struct MapResult {
     /// The cut mesh: its vertices [0, |V|) are the input's in order (DESIGN §3); point features,
     /// path and Steiner vertices follow. `cut.feature_vertex[i]` is feature i's vertex.
     /// `cut.feature_vertex` lists the given features only (the added border features are in
-    /// `auto_border`).
+    /// `auto_border`); `triangulation` and the patches' corners index the given features, then
+    /// the added ones: feature `given + j` is `auto_border.vertex[j]` (use `feature_vertex_of`).
     CutMesh cut;
     std::vector<Vec2> uv;             ///< one UV per vertex of cut.mesh (the written map)
     std::vector<Vec2> feature_uv;     ///< per given feature, its UV constraint
@@ -89,6 +90,13 @@ struct MapResult {
     MapTimings timings_ms;
     int point_features = 0;           ///< features given as 3D points (inserted as vertices)
     double point_features_moved = 0;  ///< the largest distance a point feature moved onto the mesh
+
+    /// The vertex of feature `i` as the triangulation and the patches count them (given
+    /// features first, then the added border features).
+    int feature_vertex_of(int i) const {
+        const int given = int(cut.feature_vertex.size());
+        return i < given ? cut.feature_vertex[i] : auto_border.vertex.at(i - given);
+    }
 
     /// The map as a textured mesh with per-vertex UVs (one chart), ready for write_obj/write_glb.
     /// Faces carry their patch (`TexturedMesh::patch`), so the OBJ shows the cut as groups.

@@ -130,7 +130,14 @@ Fit fit_similarity(const std::vector<Vec2>& tutte, const std::vector<int>& fv, c
         stp += std::conj(t[i] - tm) * (p[i] - pm);
     }
     // One feature, or all at one Tutte point: the disc at the starter features' size.
-    if (stt > 1e-12 && std::abs(stp / stt) > 1e-9) f.a = stp / stt;
+    if (stt > 1e-12 && std::abs(stp / stt) > 1e-9) {
+        f.a = stp / stt;
+    } else if (n == 1 && std::abs(t[0]) > 1e-12 && std::abs(Cx(0.5, 0.5) - p[0]) > 1e-12) {
+        // One feature: turn the disc so that its centre lies from the feature towards the image's
+        // centre (a feature near an edge then keeps the disc inside the image).
+        const Cx towards = (Cx(0.5, 0.5) - p[0]) / std::abs(Cx(0.5, 0.5) - p[0]);
+        f.a = -0.45 * towards / (t[0] / std::abs(t[0]));
+    }
     f.b = pm - f.a * tm;
     for (int i = 0; i < n; ++i) f.residual += std::norm(f.a * t[i] + f.b - p[i]);
     return f;
@@ -235,7 +242,9 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
     // Where the mesh border would lie: Tutte's map fitted to the features.
     const std::vector<Vec2> tutte = tutte_map(mesh);
     const Fit plain = fit_similarity(tutte, fv, uv, false), mirrored = fit_similarity(tutte, fv, uv, true);
-    bool mirror = mirrored.residual < plain.residual;
+    // Mirrored only when the mirror similarity fits clearly better: with one or two features
+    // both fit exactly, and rounding must not mirror the chart.
+    bool mirror = n > 2 && mirrored.residual < 0.5 * plain.residual;
     if (k >= 3) {
         const std::vector<P2> poly = polygon(uv, given);
         mirror = CGAL::orientation_2(poly.begin(), poly.end(), K()) == CGAL::CLOCKWISE;
@@ -275,13 +284,13 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
         if (at[fv[i]] < 0)
             inset = std::min({inset, 0.5 * uv[i].x(), 0.5 * uv[i].y(), 0.5 * (1 - uv[i].x()), 0.5 * (1 - uv[i].y())});
     region = clip_to_image(region, inset);
+    if (region.size() < 3) throw BadInput(file, out.reason + ", and no region inside the image can hold the border");
 
     // Arc length along the loop from loop[0], for the added features' angles.
     std::vector<double> arc(nl + 1, 0);
     for (int i = 0; i < nl; ++i) arc[i + 1] = arc[i] + (mesh.positions[loop[(i + 1) % nl]] - mesh.positions[loop[i]]).norm();
     auto arc_between = [&](int from, int to) {  // along the loop, from index `from` forward to `to`
-        const double d = arc[to] - arc[from];
-        return d > 0 ? d : d + arc[nl];
+        return to > from ? arc[to] - arc[from] : arc[to] - arc[from] + arc[nl];
     };
 
     std::vector<Vec2> centres;
