@@ -291,6 +291,7 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
         if (isometric && options.isometric.border == BorderMode::fixed) ropt.move_border = false;
         // The border stays in the image (or in the embedding's box, if that reaches outside).
         ropt.keep_in_box = !isometric || options.isometric.keep_in_box;
+        ropt.box_lo = options.isometric.box_lo, ropt.box_hi = options.isometric.box_hi;  // the optimiser's image
         for (const Vec2& p : r.uv) ropt.box_lo = ropt.box_lo.cwiseMin(p), ropt.box_hi = ropt.box_hi.cwiseMax(p);
         r.relax_stats = relax(r.cut.mesh, r.uv, r.cut.feature_vertex, ropt);
         r.timings_ms.refine = ms_since(t0);

@@ -130,14 +130,7 @@ Fit fit_similarity(const std::vector<Vec2>& tutte, const std::vector<int>& fv, c
         stp += std::conj(t[i] - tm) * (p[i] - pm);
     }
     // One feature, or all at one Tutte point: the disc at the starter features' size.
-    if (stt > 1e-12 && std::abs(stp / stt) > 1e-9) {
-        f.a = stp / stt;
-    } else if (n == 1 && std::abs(t[0]) > 1e-12 && std::abs(Cx(0.5, 0.5) - p[0]) > 1e-12) {
-        // One feature: turn the disc so that its centre lies from the feature towards the image's
-        // centre (a feature near an edge then keeps the disc inside the image).
-        const Cx towards = (Cx(0.5, 0.5) - p[0]) / std::abs(Cx(0.5, 0.5) - p[0]);
-        f.a = -0.45 * towards / (t[0] / std::abs(t[0]));
-    }
+    if (stt > 1e-12 && std::abs(stp / stt) > 1e-9) f.a = stp / stt;
     f.b = pm - f.a * tm;
     for (int i = 0; i < n; ++i) f.residual += std::norm(f.a * t[i] + f.b - p[i]);
     return f;
@@ -242,9 +235,15 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
     // Where the mesh border would lie: Tutte's map fitted to the features.
     const std::vector<Vec2> tutte = tutte_map(mesh);
     const Fit plain = fit_similarity(tutte, fv, uv, false), mirrored = fit_similarity(tutte, fv, uv, true);
-    // Mirrored only when the mirror similarity fits clearly better: with one or two features
-    // both fit exactly, and rounding must not mirror the chart.
-    bool mirror = n > 2 && mirrored.residual < 0.5 * plain.residual;
+    // Mirrored only when the mirror similarity fits better by more than rounding: with one or two
+    // features (or collinear ones) both fit exactly, and rounding must not mirror the chart.
+    double spread = 0;
+    {
+        Vec2 mean = Vec2::Zero();
+        for (const Vec2& p : uv) mean += p / n;
+        for (const Vec2& p : uv) spread += (p - mean).squaredNorm();
+    }
+    bool mirror = n > 2 && mirrored.residual < plain.residual - 1e-9 * spread;
     if (k >= 3) {
         const std::vector<P2> poly = polygon(uv, given);
         mirror = CGAL::orientation_2(poly.begin(), poly.end(), K()) == CGAL::CLOCKWISE;
