@@ -31,13 +31,14 @@ std::vector<P2> polygon(const std::vector<Vec2>& uv, const std::vector<int>& ord
     return poly;
 }
 
-/// Interior features (those not in `border`) not strictly inside the polygon of `border`.
-std::vector<int> outside(const std::vector<Vec2>& uv, const std::vector<int>& border, std::size_t first, std::size_t last) {
+/// Interior features among the first `count` (those not in `border`) not strictly inside the
+/// polygon of `border`.
+std::vector<int> outside(const std::vector<Vec2>& uv, const std::vector<int>& border, std::size_t count) {
     const std::vector<P2> poly = polygon(uv, border);
     std::vector<char> on(uv.size(), 0);
     for (int b : border) on[b] = 1;
     std::vector<int> out;
-    for (std::size_t i = first; i < last; ++i)
+    for (std::size_t i = 0; i < count; ++i)
         if (!on[i] && CGAL::bounded_side_2(poly.begin(), poly.end(), point(uv[i]), K()) != CGAL::ON_BOUNDED_SIDE)
             out.push_back(int(i));
     return out;
@@ -204,7 +205,7 @@ std::string auto_border_reason(const std::vector<Vec2>& uv, const std::vector<in
     if (border.size() < 3) return "only " + std::to_string(border.size()) + " feature(s) lie on the mesh border";
     const std::vector<P2> poly = polygon(uv, border);
     if (!CGAL::is_simple_2(poly.begin(), poly.end(), K())) return "";
-    const std::vector<int> out = outside(uv, border, 0, uv.size());
+    const std::vector<int> out = outside(uv, border, uv.size());
     if (out.empty()) return "";
     std::string list;
     for (int i : out) list += (list.empty() ? "" : ", ") + feature_label(names, i);
@@ -232,23 +233,25 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
             throw BadInput(file, "feature " + feature_label(names, i) + " lies on the image's edge but not on the mesh "
                                  "border: no border inside the image can hold it (move it inside, or mark a border vertex there)");
 
-    // Where the mesh border would lie: Tutte's map fitted to the features.
-    const std::vector<Vec2> tutte = tutte_map(mesh);
-    const Fit plain = fit_similarity(tutte, fv, uv, false), mirrored = fit_similarity(tutte, fv, uv, true);
-    // Mirrored only when the mirror similarity fits better by more than rounding: with one or two
-    // features (or collinear ones) both fit exactly, and rounding must not mirror the chart.
-    double spread = 0;
-    {
-        Vec2 mean = Vec2::Zero();
-        for (const Vec2& p : uv) mean += p / n;
-        for (const Vec2& p : uv) spread += (p - mean).squaredNorm();
-    }
-    bool mirror = n > 2 && mirrored.residual < plain.residual - 1e-9 * spread;
+    // The orientation: the given border polygon's (3 or more), else whichever of the similarity
+    // and the mirror similarity fits Tutte's map to the features better by more than rounding
+    // (with one or two features, or collinear ones, both fit exactly: not mirrored).
+    std::vector<Vec2> tutte;  // Tutte's map, solved only where it is used (a sparse solve)
+    auto tutte_fit = [&](bool mirrored) {
+        if (tutte.empty()) tutte = tutte_map(mesh);
+        return fit_similarity(tutte, fv, uv, mirrored);
+    };
+    bool mirror = false;
     if (k >= 3) {
         const std::vector<P2> poly = polygon(uv, given);
         mirror = CGAL::orientation_2(poly.begin(), poly.end(), K()) == CGAL::CLOCKWISE;
+    } else if (n > 2) {
+        double spread = 0;
+        Vec2 mean = Vec2::Zero();
+        for (const Vec2& p : uv) mean += p / n;
+        for (const Vec2& p : uv) spread += (p - mean).squaredNorm();
+        mirror = tutte_fit(true).residual < tutte_fit(false).residual - 1e-9 * spread;
     }
-    const Fit& fit = mirror ? mirrored : plain;
     const double sigma = mirror ? -1 : 1;
     out.mirrored = mirror;
 
@@ -260,11 +263,13 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
         if (!lscm.empty())
             for (int v : loop) fitted.push_back(lscm[v]);
     }
-    if (fitted.empty())
+    if (fitted.empty()) {
+        const Fit fit = tutte_fit(mirror);
         for (int v : loop) {
             const Cx z = fit.at(tutte[v]);
             fitted.emplace_back(z.real(), z.imag());
         }
+    }
 
     // R: the hull of the fitted border and of a margin around every feature, in the image.
     std::vector<P2> cloud, hull;
@@ -396,7 +401,7 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
             all.insert(all.end(), tried.uv.begin(), tried.uv.end());
             const std::vector<P2> poly = polygon(all, order);
             if (order.size() >= 3 && CGAL::is_simple_2(poly.begin(), poly.end(), K()) &&
-                outside(all, order, 0, uv.size()).empty())
+                outside(all, order, uv.size()).empty())
                 return tried;
             if (samples >= 2 * nl) break;
         }
