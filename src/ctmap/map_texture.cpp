@@ -230,6 +230,24 @@ FeatureLayout check_feature_layout(const TriMesh& input, const std::vector<MapFe
     return out;
 }
 
+std::vector<int> place_point_features(TriMesh& mesh, const std::vector<MapFeature>& features, double snap) {
+    const UnitBox box = UnitBox::of(mesh, "");
+    TriMesh unit = mesh;
+    for (Vec3& q : unit.positions) q = box.in(q);
+    std::vector<MapFeature> unit_features = features;
+    for (MapFeature& f : unit_features)
+        if (f.vertex < 0) f.point = box.in(f.point);
+    const double unit_snap = snap >= 0 ? snap / box.half : kDefaultSnapFraction * diagonal(unit);
+    int inserted = 0;
+    double moved = 0;
+    const std::vector<int> vertex = feature_vertices(unit, unit_features, unit_snap, inserted, moved);
+    // The input's vertices keep their exact coordinates; only the inserted ones come back from the box.
+    const int n = mesh.num_vertices();
+    mesh.faces = unit.faces;
+    for (int i = n; i < unit.num_vertices(); ++i) mesh.positions.push_back(box.out(unit.positions[i]));
+    return vertex;
+}
+
 std::vector<MapFeature> map_features(const FeatureSet& fs, int width, int height) {
     std::vector<MapFeature> out;
     out.reserve(fs.features.size());

@@ -135,6 +135,13 @@ struct FeatureLayout {
 FeatureLayout check_feature_layout(const TriMesh& mesh, const std::vector<MapFeature>& features,
                                    const std::string& features_file = "", double snap = -1, bool auto_border = true);
 
+/// Puts the point features of `features` on `mesh` as vertices, as `map_texture` does (a point
+/// within `snap` of a vertex uses it, else the face or edge it lies on is split); the input's
+/// vertices keep their indices and coordinates, inserted ones follow. `ctmap morph` uses it to
+/// know which pairs lie on the border before mapping.
+/// \pre every vertex index in range; points finite. \return per feature, its vertex.
+std::vector<int> place_point_features(TriMesh& mesh, const std::vector<MapFeature>& features, double snap = -1);
+
 /// The features of a features file for `map_texture`. \pre `resolve_units(fs, width, height)`
 /// was called (image points in pixels).
 std::vector<MapFeature> map_features(const FeatureSet& fs, int width, int height);

@@ -2,6 +2,7 @@
 
 #include "ctmap/io/image.h"
 #include "ctmap/io/input_file.h"
+#include "ctmap/io/json_document.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -38,49 +39,6 @@ private:
 
 std::string named(const std::string& s) { return "'" + s + "'"; }
 
-bool read_number_array(const json& j, std::size_t n, double* out) {
-    if (!j.is_array() || j.size() != n) return false;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (!j[i].is_number()) return false;
-        out[i] = j[i].get<double>();
-    }
-    return true;
-}
-
-bool all_finite(const double* v, std::size_t n) {
-    for (std::size_t i = 0; i < n; ++i)
-        if (!std::isfinite(v[i])) return false;
-    return true;
-}
-
-/// Arrays and objects nest at most this deep in a features file (DESIGN §4 needs 4).
-constexpr int kMaxNesting = 64;
-
-/// Refuses documents nested deeper than kMaxNesting, counted outside strings, before the JSON
-/// parser (which recurses once per level, and overflows the stack past ~10,000) sees them.
-void check_nesting(const std::string& text, const std::string& path) {
-    int depth = 0;
-    bool in_string = false;
-    std::size_t line = 1;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (c == '\n') ++line;
-        if (in_string) {
-            if (c == '\\') ++i;
-            else if (c == '"') in_string = false;
-            continue;
-        }
-        if (c == '"') in_string = true;
-        else if (c == '[' || c == '{') {
-            if (++depth > kMaxNesting)
-                throw BadInput(path, "line " + std::to_string(line) + ": arrays and objects nested more than " +
-                                         std::to_string(kMaxNesting) + " deep: not a features file");
-        } else if (c == ']' || c == '}') {
-            --depth;
-        }
-    }
-}
-
 std::string short_number(double x) {
     std::ostringstream os;
     os << std::setprecision(3) << x;
@@ -104,18 +62,7 @@ FeatureSet read_features(const std::string& path) {
 }
 
 FeatureSet parse_features(const std::string& text, const std::string& path) {
-    if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw BadInput(path, "the features file is empty");
-    check_nesting(text, path);  // before the parser recurses into it
-    json doc;
-    try {
-        doc = json::parse(text);
-    } catch (const json::parse_error& e) {
-        throw BadInput(path, std::string("not valid JSON: ") + e.what());
-    } catch (const json::out_of_range& e) {  // a number such as 1e999 that no double holds
-        throw BadInput(path, std::string("a number is out of range (too large for a double): ") + e.what());
-    } catch (const json::exception& e) {
-        throw BadInput(path, std::string("not valid JSON: ") + e.what());
-    }
+    json doc = parse_json_document(text, path, "features file");
     if (!doc.is_object()) throw BadInput(path, "the features file must hold a JSON object with a \"features\" array");
 
     FeatureSet out;

@@ -80,6 +80,50 @@ GlbVertices split_vertices(const TexturedMesh& tm) {
     return out;
 }
 
+/// Adds `mesh` to `m` as its one node of its one scene and writes the binary glTF to `path` (a
+/// temporary registered in `outputs`).
+void write_single_mesh(tinygltf::Model& m, const tinygltf::Mesh& mesh, const std::string& path, OutputSet& outputs) {
+    m.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.mesh = 0;
+    m.nodes.push_back(node);
+    tinygltf::Scene scene;
+    scene.nodes.push_back(0);
+    m.scenes.push_back(scene);
+    m.defaultScene = 0;
+    const std::string tmp = outputs.add(path);
+    std::ofstream os(tmp, std::ios::binary);
+    tinygltf::TinyGLTF gltf;
+    if (!gltf.WriteGltfSceneToStream(&m, os, false, true) || !os.flush())
+        throw InternalError(path + ": could not write the glTF file");
+}
+
+int add_accessor(tinygltf::Model& m, int view, int ctype, std::size_t count, int type) {
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.componentType = ctype;
+    a.count = count;
+    a.type = type;
+    m.accessors.push_back(a);
+    return int(m.accessors.size()) - 1;
+}
+
+/// A float VEC3 vertex attribute accessor over `data` (3 floats per vertex), with min and max.
+int add_vec3(tinygltf::Model& m, const std::vector<float>& data) {
+    auto& buf = m.buffers[0].data;
+    const int a = add_accessor(m, add_view(m, append(buf, data), data.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                               TINYGLTF_COMPONENT_TYPE_FLOAT, data.size() / 3, TINYGLTF_TYPE_VEC3);
+    std::vector<double> lo(3, 0), hi(3, 0);
+    for (std::size_t i = 0; i < data.size(); ++i) {
+        const std::size_t k = i % 3;
+        lo[k] = i < 3 ? data[i] : std::min(lo[k], double(data[i]));
+        hi[k] = i < 3 ? data[i] : std::max(hi[k], double(data[i]));
+    }
+    m.accessors[a].minValues = lo;
+    m.accessors[a].maxValues = hi;
+    return a;
+}
+
 }  // namespace
 
 void write_glb(const TexturedMesh& tm, const std::string& path, const std::string& image, OutputSet& outputs) {
@@ -107,28 +151,19 @@ void write_glb(const TexturedMesh& tm, const std::string& path, const std::strin
 
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
-    auto add_accessor = [&](int view, int ctype, std::size_t count, int type) {
-        tinygltf::Accessor a;
-        a.bufferView = view;
-        a.componentType = ctype;
-        a.count = count;
-        a.type = type;
-        m.accessors.push_back(a);
-        return int(m.accessors.size()) - 1;
-    };
-    const int pos_acc = add_accessor(add_view(m, append(buf, pos), pos.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+    const int pos_acc = add_accessor(m, add_view(m, append(buf, pos), pos.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                                      TINYGLTF_COMPONENT_TYPE_FLOAT, pos.size() / 3, TINYGLTF_TYPE_VEC3);
     m.accessors[pos_acc].minValues = {double(box.min().x()), double(box.min().y()), double(box.min().z())};
     m.accessors[pos_acc].maxValues = {double(box.max().x()), double(box.max().y()), double(box.max().z())};
     prim.attributes["POSITION"] = pos_acc;
     prim.attributes["NORMAL"] =  // smooth shading in three.js and Blender
-        add_accessor(add_view(m, append(buf, nrm), nrm.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+        add_accessor(m, add_view(m, append(buf, nrm), nrm.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                      TINYGLTF_COMPONENT_TYPE_FLOAT, nrm.size() / 3, TINYGLTF_TYPE_VEC3);
     if (has_uv)
         prim.attributes["TEXCOORD_0"] =
-            add_accessor(add_view(m, append(buf, uv), uv.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+            add_accessor(m, add_view(m, append(buf, uv), uv.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                          TINYGLTF_COMPONENT_TYPE_FLOAT, uv.size() / 2, TINYGLTF_TYPE_VEC2);
-    prim.indices = add_accessor(add_view(m, append(buf, idx), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+    prim.indices = add_accessor(m, add_view(m, append(buf, idx), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, idx.size(), TINYGLTF_TYPE_SCALAR);
 
     tinygltf::Material mat;
@@ -168,20 +203,77 @@ void write_glb(const TexturedMesh& tm, const std::string& path, const std::strin
     tinygltf::Mesh mesh;
     mesh.name = "ctmap";
     mesh.primitives.push_back(prim);
-    m.meshes.push_back(mesh);
-    tinygltf::Node node;
-    node.mesh = 0;
-    m.nodes.push_back(node);
-    tinygltf::Scene scene;
-    scene.nodes.push_back(0);
-    m.scenes.push_back(scene);
-    m.defaultScene = 0;
+    write_single_mesh(m, mesh, path, outputs);
+}
 
-    const std::string tmp = outputs.add(path);
-    std::ofstream os(tmp, std::ios::binary);
-    tinygltf::TinyGLTF gltf;
-    if (!gltf.WriteGltfSceneToStream(&m, os, false, true) || !os.flush())
-        throw InternalError(path + ": could not write the glTF file");
+void write_morph_glb(const TriMesh& base, const std::vector<Vec3>& target, const std::string& path, OutputSet& outputs,
+                     double seconds) {
+    if (target.size() != base.positions.size()) throw InternalError(path + ": the morph target has another vertex count");
+    tinygltf::Model m;
+    m.asset.version = "2.0";
+    m.asset.generator = "ctmap morph";
+    m.buffers.emplace_back();
+    TriMesh end = base;
+    end.positions = target;
+    const std::vector<Vec3> n0 = vertex_normals(base), n1 = vertex_normals(end);
+    std::vector<float> pos, nrm, dpos, dnrm;
+    for (std::size_t v = 0; v < base.positions.size(); ++v) {
+        const Eigen::Vector3f p = float_position(base.positions[v], int(v), path);
+        const Eigen::Vector3f q = float_position(target[v], int(v), path);
+        pos.insert(pos.end(), {p.x(), p.y(), p.z()});
+        dpos.insert(dpos.end(), {q.x() - p.x(), q.y() - p.y(), q.z() - p.z()});
+        const Eigen::Vector3f a = n0[v].cast<float>(), b = n1[v].cast<float>();
+        nrm.insert(nrm.end(), {a.x(), a.y(), a.z()});
+        dnrm.insert(dnrm.end(), {b.x() - a.x(), b.y() - a.y(), b.z() - a.z()});
+    }
+    std::vector<std::uint32_t> idx;
+    for (const Tri& t : base.faces) idx.insert(idx.end(), {std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
+
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.attributes["POSITION"] = add_vec3(m, pos);
+    prim.attributes["NORMAL"] = add_vec3(m, nrm);
+    prim.targets.push_back({{"POSITION", add_vec3(m, dpos)}, {"NORMAL", add_vec3(m, dnrm)}});
+    auto& buf = m.buffers[0].data;
+    prim.indices = add_accessor(m, add_view(m, append(buf, idx), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, idx.size(), TINYGLTF_TYPE_SCALAR);
+    tinygltf::Material mat;
+    mat.name = "ctmap_morph";
+    mat.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
+    mat.pbrMetallicRoughness.metallicFactor = 0.0;
+    mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+    mat.doubleSided = true;
+    m.materials.push_back(mat);
+    prim.material = 0;
+
+    // The weight from 0 to 1 and back, linearly: time [0, s, 2s] -> weight [0, 1, 0].
+    const std::vector<float> times{0.0f, float(seconds), float(2 * seconds)}, weights{0.0f, 1.0f, 0.0f};
+    tinygltf::Animation anim;
+    anim.name = "morph";
+    tinygltf::AnimationSampler sampler;
+    sampler.input = add_accessor(m, add_view(m, append(buf, times), times.size() * 4, 0), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                 times.size(), TINYGLTF_TYPE_SCALAR);
+    m.accessors[sampler.input].minValues = {0.0};
+    m.accessors[sampler.input].maxValues = {2 * seconds};
+    sampler.output = add_accessor(m, add_view(m, append(buf, weights), weights.size() * 4, 0),
+                                  TINYGLTF_COMPONENT_TYPE_FLOAT, weights.size(), TINYGLTF_TYPE_SCALAR);
+    sampler.interpolation = "LINEAR";
+    anim.samplers.push_back(sampler);
+    tinygltf::AnimationChannel channel;
+    channel.sampler = 0;
+    channel.target_node = 0;
+    channel.target_path = "weights";
+    anim.channels.push_back(channel);
+    m.animations.push_back(anim);
+
+    tinygltf::Mesh mesh;
+    mesh.name = "ctmap_morph";
+    mesh.primitives.push_back(prim);
+    mesh.weights = {0.0};
+    tinygltf::Value::Object extras;
+    extras["targetNames"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(std::string("target"))});
+    mesh.extras = tinygltf::Value(extras);
+    write_single_mesh(m, mesh, path, outputs);
 }
 
 void write_glb(const TexturedMesh& mesh, const std::string& path, const std::string& image) {

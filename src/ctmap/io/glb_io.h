@@ -22,6 +22,14 @@ void write_glb(const TexturedMesh& mesh, const std::string& path, const std::str
 /// Same, committed at once.
 void write_glb(const TexturedMesh& mesh, const std::string& path, const std::string& image = "");
 
+/// Writes a morph as a binary glTF: the mesh in its `base` shape with `target` (one position per
+/// vertex) as its one glTF morph target (POSITION and NORMAL displacements, named "target" in
+/// `extras.targetNames`), mesh weight 0, and an animation "morph" of the weight 0 -> 1 -> 0 over
+/// 2 `seconds` (three.js's AnimationMixer and Blender play it). Registered in `outputs`.
+/// \throw BadInput if a coordinate does not fit a 32-bit float; InternalError if it cannot be written.
+void write_morph_glb(const TriMesh& base, const std::vector<Vec3>& target, const std::string& path, OutputSet& outputs,
+                     double seconds = 2.0);
+
 /// The base-colour texture embedded in a glTF file, as stored: the encoded PNG or JPEG bytes.
 struct GlbTexture {
     std::string mime_type;             ///< "image/png" or "image/jpeg"; empty if there is no texture
