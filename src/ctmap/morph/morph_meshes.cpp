@@ -10,6 +10,9 @@
 #include "ctmap/border_loop.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/mesh_topology.h"
+#include "ctmap/morph/surface_distance.h"
+
+#include <memory>
 
 namespace ctmap {
 namespace {
@@ -45,15 +48,17 @@ std::vector<int> place_ends(TriMesh& mesh, const PairSet& set, bool source, doub
     Eigen::AlignedBox3d box;
     for (const Vec3& q : mesh.positions) box.extend(q);
     const double tolerance = snap >= 0 ? snap : kDefaultSnapFraction * box.diagonal().norm();
-    const std::vector<int> vertex = place_point_features(mesh, ends, snap);
+    std::unique_ptr<SurfaceDistance> surface;
     for (std::size_t i = 0; i < ends.size(); ++i) {
         if (ends[i].vertex >= 0) continue;
-        const double d = (mesh.positions[vertex[i]] - ends[i].point).norm();
+        if (!surface) surface = std::make_unique<SurfaceDistance>(mesh);
+        const double d = surface->distance(ends[i].point);
         if (!(d <= tolerance))
             throw BadInput(set.path, "pair '" + ends[i].name + "': the " + side + " point is " + std::to_string(d) +
                                          " off the surface of " + file + " (more than " + std::to_string(tolerance) +
                                          "); give a point on the surface or a vertex");
     }
+    const std::vector<int> vertex = place_point_features(mesh, ends, snap);
     for (std::size_t i = 0; i < vertex.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
             if (vertex[i] == vertex[j])
@@ -119,29 +124,34 @@ MorphResult morph_meshes(const TriMesh& source_in, const TriMesh& target_in, con
         throw BadInput(pairs.path, "only " + std::to_string(tb.pair.size()) + " pair(s) lie on the meshes' borders (" +
                                        names_in_order(pairs, tb.pair) +
                                        "): a morph needs at least 3 border pairs, in the same order along both borders");
-    // The source's order, turned to start where the target's does.
+    // Both orders turned to start at the first border pair of the file.
+    BorderPairs t_border = tb;
     std::vector<int> s_order = sb.pair;
     std::vector<double> s_at = sb.at;
-    const auto first = std::find(s_order.begin(), s_order.end(), tb.pair[0]) - s_order.begin();
+    const int lead = *std::min_element(tb.pair.begin(), tb.pair.end());
+    const auto tf0 = std::find(t_border.pair.begin(), t_border.pair.end(), lead) - t_border.pair.begin();
+    std::rotate(t_border.pair.begin(), t_border.pair.begin() + tf0, t_border.pair.end());
+    std::rotate(t_border.at.begin(), t_border.at.begin() + tf0, t_border.at.end());
+    const auto first = std::find(s_order.begin(), s_order.end(), lead) - s_order.begin();
     std::rotate(s_order.begin(), s_order.begin() + first, s_order.end());
     std::rotate(s_at.begin(), s_at.begin() + first, s_at.end());
-    if (s_order != tb.pair)
+    if (s_order != t_border.pair)
         throw BadInput(pairs.path, "the border pairs come in a different cyclic order along the source's border (" +
                                        names_in_order(pairs, s_order) + ") than along the target's (" +
-                                       names_in_order(pairs, tb.pair) +
+                                       names_in_order(pairs, t_border.pair) +
                                        "); reorder them, or flip one mesh's faces if it is oriented the other way");
 
     // The polygon: border pairs on a circle, at the mean of their two arc-length fractions.
     MorphResult out;
     const double pi = std::numbers::pi;
     std::vector<Vec2> corner(pairs.pairs.size(), Vec2(0, 0));
-    for (std::size_t k = 0; k < tb.pair.size(); ++k) {
-        double fs = s_at[k] - s_at[0], ft = tb.at[k] - tb.at[0];
+    for (std::size_t k = 0; k < t_border.pair.size(); ++k) {
+        double fs = s_at[k] - s_at[0], ft = t_border.at[k] - t_border.at[0];
         if (fs < 0) fs += 1;
         if (ft < 0) ft += 1;
         const double a = 2 * pi * 0.5 * (fs + ft);
-        corner[tb.pair[k]] = Vec2(0.5 + 0.45 * std::cos(a), 0.5 + 0.45 * std::sin(a));
-        out.border_pairs.push_back(pairs.pairs[tb.pair[k]].name);
+        corner[t_border.pair[k]] = Vec2(0.5 + 0.45 * std::cos(a), 0.5 + 0.45 * std::sin(a));
+        out.border_pairs.push_back(pairs.pairs[t_border.pair[k]].name);
     }
 
     MapOptions mo = options.map;
@@ -152,7 +162,7 @@ MorphResult morph_meshes(const TriMesh& source_in, const TriMesh& target_in, con
     if (options.progress) options.progress("target map");
     auto t0 = Clock::now();
     std::vector<MapFeature> tf;
-    for (int i : tb.pair) {
+    for (int i : t_border.pair) {
         MapFeature f;
         f.name = pairs.pairs[i].name;
         f.vertex = tv[i];
