@@ -103,8 +103,8 @@ int run_morph(const MorphArgs& a) {
         std::cout << "morph " << a.source << " -> " << a.target << ": " << pairs.pairs.size() << " pairs ("
                   << m.border_pairs.size() << " on the borders)\n"
                   << "  common mesh: " << m.common.mesh.num_vertices() << " vertices (" << m.common.source_vertices
-                  << " from the source's map, " << m.common.inserted << " target vertices inserted, " << m.common.merged
-                  << " shared), " << m.common.mesh.num_faces() << " faces\n"
+                  << " from the source's map, " << m.common.inserted << " from the target's, " << m.common.merged
+                  << " shared, " << m.common.crossings << " edge crossings), " << m.common.mesh.num_faces() << " faces\n"
                   << "  maps: target " << (m.target_map.certificate.valid ? "certified" : "INVALID") << ", source "
                   << (m.source_map.certificate.valid ? "certified" : "INVALID") << "\n"
                   << "  pairs on their target points: max error " << q.pair_error << " (" << q.pair_error / q.diagonal

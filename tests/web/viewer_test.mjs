@@ -11,65 +11,28 @@
 // Exit 0 when, in both files, every visible feature shows its colour and at least MIN_CHECKED
 // features were visible.
 import fs from 'node:fs';
-import http from 'node:http';
-import os from 'node:os';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { checkTools, fail as failWith, launchBrowser, startServer } from './harness.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
 const TOLERANCE = 8;     // levels per channel (0-255): sRGB decode/encode and texture filtering only
 const MIN_CHECKED = 5;   // visible features needed for the test to mean something
-const CHROMIUM = process.env.CTMAP_CHROMIUM || '/usr/bin/chromium';
 
 const maxDiff = (a, b) => Math.max(...a.map((v, k) => Math.abs(v - b[k])));
 
-function fail(msg) {
-  console.log(`viewer test: ${msg}`);
-  process.exit(1);
-}
+const fail = (msg) => failWith(msg, 'viewer test');
 
 if (process.argv.length !== 3) fail('usage: node viewer_test.mjs DIR');
 const dir = path.resolve(process.argv[2]);
 const expected = JSON.parse(fs.readFileSync(path.join(dir, 'expected.json'), 'utf8'));
 for (const f of ['map.glb', 'map.obj', 'map.mtl']) if (!fs.existsSync(path.join(dir, f))) fail(`no ${f} in ${dir}`);
-if (!fs.existsSync(path.join(here, 'node_modules', 'three'))) fail(`three.js missing: run 'npm ci' in ${here}`);
-if (!fs.existsSync(CHROMIUM)) fail(`no Chromium at ${CHROMIUM} (Debian package chromium, scripts/install_deps.sh)`);
-const { chromium } = await import('playwright-core');
+checkTools('viewer test');
+const { server, origin } = await startServer('viewer.html', dir);
 
-// Only the page, three.js's modules and the files directly in DIR are served; anything else is a 404.
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.glb': 'model/gltf-binary', '.png': 'image/png' };
-const server = http.createServer((req, res) => {
-  const url = decodeURIComponent(new URL(req.url, 'http://localhost').pathname);
-  let file = null;
-  if (url === '/' || url === '/viewer.html') file = path.join(here, 'viewer.html');
-  else if (url.startsWith('/model/') && !url.slice(7).includes('/')) file = path.join(dir, url.slice(7));
-  else if (url.startsWith('/node_modules/three/')) {
-    file = path.join(here, url);
-    if (!file.startsWith(path.join(here, 'node_modules', 'three') + path.sep)) file = null;
-  }
-  if (!file || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
-    res.writeHead(404);
-    res.end();
-    return;
-  }
-  res.writeHead(200, { 'Content-Type': types[path.extname(file)] || 'application/octet-stream' });
-  fs.createReadStream(file).pipe(res);
-});
-await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
-const origin = `http://127.0.0.1:${server.address().port}`;
-
-const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'ctmap-chromium-'));
 let context = null;
+let profile = null;
 let code = 1;
 try {
-  context = await chromium.launchPersistentContext(profile, {
-    executablePath: CHROMIUM,
-    headless: true,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-    viewport: { width: 640, height: 640 },
-    deviceScaleFactor: 1,
-  });
+  ({ context, profile } = await launchBrowser());
   console.log(`Chromium ${context.browser()?.version() ?? ''}`);
   const byName = new Map(expected.features.map((f) => [f.name, f]));
   const failures = [];
@@ -130,7 +93,7 @@ try {
 } finally {
   if (context) await context.close();
   server.close();
-  fs.rmSync(profile, { recursive: true, force: true });
+  if (profile) fs.rmSync(profile, { recursive: true, force: true });
 }
 // Not process.exit: stdout to a pipe is written asynchronously and would be cut short.
 process.exitCode = code;

@@ -1,11 +1,13 @@
 #include "ctmap/morph/common_mesh.h"
 
-#include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <set>
 
 #include "ctmap/certify/certificate.h"
 #include "ctmap/morph/locate_2d.h"
@@ -13,31 +15,46 @@
 namespace ctmap {
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb>;
-using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, EK>;
+using Fb = CGAL::Constrained_triangulation_face_base_2<EK>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using Overlay = CGAL::Constrained_Delaunay_triangulation_2<EK, Tds, CGAL::Exact_intersections_tag>;
 
-/// A point on a source edge (u < v): its parameter from u to v and its common-mesh vertex.
-struct EdgePoint {
-    double s;
-    int vertex;
-};
+/// The point of `mesh` where `l` says.
+Vec3 surface_point(const TriMesh& mesh, const Location& l) {
+    const Tri& t = mesh.faces[l.face];
+    if (l.corner >= 0) return mesh.positions[t[l.corner]];
+    return l.bary[0] * mesh.positions[t[0]] + l.bary[1] * mesh.positions[t[1]] + l.bary[2] * mesh.positions[t[2]];
+}
 
-/// The point of reference triangle (0,0), (1,0), (0,1) at parameter s along its edge from corner
-/// a to corner b. On the hypotenuse the coordinate >= 1/2 is kept and the other is 1 minus it,
-/// exact by Sterbenz's lemma, so the point lies exactly on the hypotenuse.
-K::Point_2 on_reference_edge(int a, int b, double s) {
-    static const double corner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
-    if (a + b == 3) {  // corners 1 and 2
-        double x = a == 1 ? 1 - s : s;  // x-coordinate of the point
-        if (x >= 0.5) return {x, 1 - x};
-        const double y = 1 - x;
-        return {1 - y, y};
-    }
-    const double x = corner[a][0] + s * (corner[b][0] - corner[a][0]);
-    const double y = corner[a][1] + s * (corner[b][1] - corner[a][1]);
-    return {x, y};
+/// +1 if the map's triangles are counter-clockwise, -1 if clockwise (a mirrored map).
+int map_orientation(const std::vector<Vec2>& uv, const std::vector<Tri>& faces) {
+    for (const Tri& t : faces)
+        if (const int o = orientation_2d(uv[t[0]], uv[t[1]], uv[t[2]]); o != 0) return o;
+    return 1;
+}
+
+/// Each undirected edge of `faces` with two faces (interior), once.
+std::vector<std::pair<int, int>> interior_edges(const std::vector<Tri>& faces) {
+    std::map<std::pair<int, int>, int> count;
+    for (const Tri& t : faces)
+        for (int k = 0; k < 3; ++k) ++count[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+    std::vector<std::pair<int, int>> out;
+    for (const auto& [e, n] : count)
+        if (n == 2) out.push_back(e);
+    return out;
+}
+
+/// The vertices on the border of `faces` (ends of edges with one face).
+std::vector<int> border_vertices(const std::vector<Tri>& faces) {
+    std::map<std::pair<int, int>, int> count;
+    for (const Tri& t : faces)
+        for (int k = 0; k < 3; ++k) ++count[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+    std::set<int> out;
+    for (const auto& [e, n] : count)
+        if (n == 1) out.insert({e.first, e.second});
+    return {out.begin(), out.end()};
 }
 
 }  // namespace
@@ -49,103 +66,118 @@ CommonMesh common_mesh(const PlanarMap& source, const PlanarMap& target, const C
     const std::vector<Vec2>& tuv = *target.uv;
     CommonMesh out;
     out.source_vertices = S.num_vertices();
-    out.mesh.positions = S.positions;
-    out.uv = suv;
-    out.target_position.resize(S.positions.size());
-
-    // Every source vertex on the target surface.
     const TriangleLocator in_target(tuv, T.faces);
-    for (int v = 0; v < S.num_vertices(); ++v) {
-        const Location l = in_target.locate(suv[v]);
-        const Tri& t = T.faces[l.face];
-        out.target_position[v] = l.corner >= 0 ? T.positions[t[l.corner]]
-                                               : Vec3(l.bary[0] * T.positions[t[0]] + l.bary[1] * T.positions[t[1]] +
-                                                      l.bary[2] * T.positions[t[2]]);
+    auto on_target = [&](const Vec2& p) {
+        const Location l = in_target.locate(p);
         out.outside += !l.inside;
-    }
-    if (!options.insert_target_vertices) {
-        out.mesh.faces = S.faces;
+        return surface_point(T, l);
+    };
+    if (!options.insert_target_vertices) {  // the source's connectivity only
+        out.mesh = S;
+        out.uv = suv;
+        for (const Vec2& p : suv) out.target_position.push_back(on_target(p));
         return out;
     }
 
-    // Every target vertex in the source's faces: a corner (shared), on an edge, or inside.
-    const TriangleLocator in_source(suv, S.faces);
-    std::map<std::pair<int, int>, std::vector<EdgePoint>> on_edge;
-    std::vector<std::vector<std::pair<Vec2, int>>> inside(S.faces.size());  // reference coordinates, vertex
-    auto add_vertex = [&](int f, const Vec3& b, int tv) {
-        const Tri& t = S.faces[f];
-        out.mesh.positions.push_back(b[0] * S.positions[t[0]] + b[1] * S.positions[t[1]] + b[2] * S.positions[t[2]]);
-        out.uv.push_back(b[0] * suv[t[0]] + b[1] * suv[t[1]] + b[2] * suv[t[2]]);
-        out.target_position.push_back(T.positions[tv]);
-        ++out.inserted;
-        return out.mesh.num_vertices() - 1;
-    };
-    for (int tv = 0; tv < T.num_vertices(); ++tv) {
-        const Location l = in_source.locate(tuv[tv]);
-        out.outside += !l.inside;
-        const Tri& t = S.faces[l.face];
-        Vec3 b = l.bary;
-        if (l.corner < 0) {
-            // On an edge when the exact orientation with it is zero (or rounding put it outside).
-            for (int k = 0; k < 3; ++k) {
-                const int i = (k + 1) % 3, j = (k + 2) % 3;
-                const int o = orientation_2d(suv[t[i]], suv[t[j]], tuv[tv]) *
-                              orientation_2d(suv[t[i]], suv[t[j]], suv[t[k]]);
-                if (o <= 0 || b[k] == 0) b[k] = 0;
-            }
-            b /= b.sum();
-        }
-        // Strictly inside in UV may still round onto the hypotenuse of the reference frame.
-        if (b[0] != 0 && CGAL::orientation(K::Point_2(1, 0), K::Point_2(0, 1), K::Point_2(b[1], b[2])) != CGAL::LEFT_TURN) {
-            b[0] = 0;
-            b /= b.sum();
-        }
-        const int zeros = int(b[0] == 0) + int(b[1] == 0) + int(b[2] == 0);
-        if (l.corner >= 0 || zeros >= 2) {  // the source vertex's point: it takes the target vertex
-            const int k = l.corner >= 0 ? l.corner : int(b[0] != 0 ? 0 : b[1] != 0 ? 1 : 2);
-            out.target_position[t[k]] = T.positions[tv];
-            ++out.merged;
-            continue;
-        }
-        if (zeros == 1) {
-            const int k = b[0] == 0 ? 0 : b[1] == 0 ? 1 : 2;
-            const int u = t[(k + 1) % 3], v = t[(k + 2) % 3];
-            const double s_uv = b[(k + 2) % 3];  // parameter from u to v
-            const double s = u < v ? s_uv : 1 - s_uv;
-            on_edge[{std::min(u, v), std::max(u, v)}].push_back({s, add_vertex(l.face, b, tv)});
-            continue;
-        }
-        inside[l.face].emplace_back(Vec2(b[1], b[2]), add_vertex(l.face, b, tv));
+    // The overlay: both maps' vertices and edges in one constrained triangulation of the domain,
+    // with exact intersections. Each of its triangles lies in one source and one target triangle,
+    // so it is flat on both surfaces.
+    Overlay overlay;
+    std::vector<Overlay::Vertex_handle> source_vh(suv.size()), target_vh(tuv.size());
+    for (std::size_t v = 0; v < suv.size(); ++v) {
+        source_vh[v] = overlay.insert(EK::Point_2(suv[v].x(), suv[v].y()));
+        source_vh[v]->info() = int(v);
     }
-    for (auto& [edge, points] : on_edge) {
-        std::sort(points.begin(), points.end(), [](const EdgePoint& a, const EdgePoint& b) { return a.s < b.s; });
+    int next = S.num_vertices();
+    for (std::size_t v = 0; v < tuv.size(); ++v) {
+        target_vh[v] = overlay.insert(EK::Point_2(tuv[v].x(), tuv[v].y()));
+        if (target_vh[v]->info() >= 0 && target_vh[v]->info() < S.num_vertices() &&
+            source_vh[target_vh[v]->info()] == target_vh[v]) {
+            ++out.merged;  // a source vertex's point: shared
+        } else {
+            target_vh[v]->info() = next++;
+            ++out.inserted;
+        }
     }
+    // Fresh vertices carry info 0 by default: mark the ones made by constraint intersections.
+    std::set<Overlay::Vertex_handle> known(source_vh.begin(), source_vh.end());
+    known.insert(target_vh.begin(), target_vh.end());
+    // Both borders lie on the same polygon's sides, each up to rounding: as two chains they would
+    // cross each other at every rounding. One chain of both borders' vertices in turn around the
+    // domain's centre (the polygon is convex) bounds the overlay instead.
+    std::set<std::pair<Overlay::Vertex_handle, Overlay::Vertex_handle>> chain;
+    {
+        std::vector<std::pair<double, Overlay::Vertex_handle>> around;
+        Vec2 centre(0, 0);
+        for (const Vec2& p : suv) centre += p;
+        centre /= double(std::max<std::size_t>(1, suv.size()));
+        for (int v : border_vertices(S.faces)) around.emplace_back(std::atan2(suv[v].y() - centre.y(), suv[v].x() - centre.x()), source_vh[v]);
+        for (int v : border_vertices(T.faces)) around.emplace_back(std::atan2(tuv[v].y() - centre.y(), tuv[v].x() - centre.x()), target_vh[v]);
+        std::sort(around.begin(), around.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        around.erase(std::unique(around.begin(), around.end(), [](const auto& a, const auto& b) { return a.second == b.second; }),
+                     around.end());
+        for (std::size_t k = 0; k < around.size(); ++k) {
+            const auto a = around[k].second, b = around[(k + 1) % around.size()].second;
+            if (a == b) continue;
+            overlay.insert_constraint(a, b);
+            chain.emplace(std::min(a, b), std::max(a, b));
+        }
+    }
+    for (auto [a, b] : interior_edges(S.faces)) overlay.insert_constraint(source_vh[a], source_vh[b]);
+    for (auto [a, b] : interior_edges(T.faces)) overlay.insert_constraint(target_vh[a], target_vh[b]);
+    std::vector<Overlay::Vertex_handle> crossing;
+    for (auto v = overlay.finite_vertices_begin(); v != overlay.finite_vertices_end(); ++v)
+        if (!known.count(v)) {
+            v->info() = next++;
+            crossing.push_back(v);
+        }
+    out.crossings = int(crossing.size());
 
-    // Faces with no point keep their triangle; the others are triangulated in their reference frame.
-    for (int f = 0; f < S.num_faces(); ++f) {
-        const Tri& t = S.faces[f];
-        std::vector<std::pair<K::Point_2, int>> points;
-        for (int k = 0; k < 3; ++k) {
-            const int u = t[k], v = t[(k + 1) % 3];
-            auto it = on_edge.find({std::min(u, v), std::max(u, v)});
-            if (it == on_edge.end()) continue;
-            for (const EdgePoint& p : it->second) {
-                const double s = u < v ? p.s : 1 - p.s;  // from corner k to corner k+1
-                points.emplace_back(on_reference_edge(k, (k + 1) % 3, s), p.vertex);
-            }
+    // Positions: each vertex on the source surface and on the target surface.
+    const TriangleLocator in_source(suv, S.faces);
+    out.mesh.positions.resize(std::size_t(next));
+    out.target_position.resize(std::size_t(next));
+    out.uv.resize(std::size_t(next));
+    for (auto v = overlay.finite_vertices_begin(); v != overlay.finite_vertices_end(); ++v) {
+        const int i = v->info();
+        const Vec2 p(CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y()));
+        out.uv[i] = i < S.num_vertices() ? suv[i] : p;
+        if (i < S.num_vertices()) {
+            out.mesh.positions[i] = S.positions[i];
+        } else {
+            const Location l = in_source.locate(p);
+            out.outside += !l.inside;
+            out.mesh.positions[i] = surface_point(S, l);
         }
-        if (points.empty() && inside[f].empty()) {
-            out.mesh.faces.push_back(t);
-            continue;
+    }
+    for (std::size_t v = 0; v < tuv.size(); ++v) out.target_position[target_vh[v]->info()] = T.positions[v];
+    std::vector<bool> from_target(std::size_t(next), false);
+    for (const auto& vh : target_vh) from_target[vh->info()] = true;
+    for (auto v = overlay.finite_vertices_begin(); v != overlay.finite_vertices_end(); ++v)
+        if (!from_target[v->info()]) out.target_position[v->info()] = on_target(out.uv[v->info()]);
+
+    // Faces inside the border chain: those not reached from outside without crossing it.
+    std::set<Overlay::Face_handle> outside;
+    std::vector<Overlay::Face_handle> stack;
+    auto incident = overlay.incident_faces(overlay.infinite_vertex()), done = incident;
+    do {
+        if (outside.insert(incident).second) stack.push_back(incident);
+    } while (++incident != done);
+    while (!stack.empty()) {
+        const Overlay::Face_handle f = stack.back();
+        stack.pop_back();
+        for (int i = 0; i < 3; ++i) {
+            const auto a = f->vertex(Overlay::cw(i)), b = f->vertex(Overlay::ccw(i));
+            if (chain.count({std::min(a, b), std::max(a, b)})) continue;
+            const Overlay::Face_handle g = f->neighbor(i);
+            if (outside.insert(g).second) stack.push_back(g);
         }
-        points.emplace_back(K::Point_2(0, 0), t[0]);
-        points.emplace_back(K::Point_2(1, 0), t[1]);
-        points.emplace_back(K::Point_2(0, 1), t[2]);
-        for (const auto& [q, v] : inside[f]) points.emplace_back(K::Point_2(q.x(), q.y()), v);
-        Delaunay dt;
-        dt.insert(points.begin(), points.end());
-        for (auto fit = dt.finite_faces_begin(); fit != dt.finite_faces_end(); ++fit)
-            out.mesh.faces.push_back({fit->vertex(0)->info(), fit->vertex(1)->info(), fit->vertex(2)->info()});
+    }
+    const bool flip = map_orientation(suv, S.faces) < 0;  // turned to the source's orientation
+    for (auto f = overlay.finite_faces_begin(); f != overlay.finite_faces_end(); ++f) {
+        if (outside.count(f)) continue;
+        const int a = f->vertex(0)->info(), b = f->vertex(1)->info(), d = f->vertex(2)->info();
+        out.mesh.faces.push_back(flip ? Tri{a, d, b} : Tri{a, b, d});
     }
     return out;
 }

@@ -16,8 +16,8 @@ struct PlanarMap {
 
 /// Options of `common_mesh`.
 struct CommonMeshOptions {
-    /// Insert every target vertex into the source's faces (the overlay's vertices), so that the
-    /// morphed surface holds all of the target's vertices; off: the source's connectivity only.
+    /// Overlay the two maps, so that both shapes are reproduced exactly; off: the source's
+    /// connectivity only (the target surface only sampled at the source's vertices).
     bool insert_target_vertices = true;
 };
 
@@ -27,17 +27,19 @@ struct CommonMesh {
     std::vector<Vec3> target_position;  ///< per vertex, its point on the target surface
     std::vector<Vec2> uv;             ///< per vertex, its point in the shared domain
     int source_vertices = 0;          ///< vertices [0, source_vertices) are the source map's, in order
-    int inserted = 0;                 ///< target vertices inserted into source faces
+    int inserted = 0;                 ///< target vertices added (after the source's)
     int merged = 0;                   ///< target vertices at exactly a source vertex's point (shared)
+    int crossings = 0;                ///< vertices where a source edge crosses a target edge (added last)
     int outside = 0;                  ///< points found outside the other map by rounding (snapped to it)
 };
 
-/// Builds the common mesh of two maps into one domain: every source vertex takes the target
-/// surface point found where its UV lies in the target's map (grid point location, exact
-/// orientation tests); every target vertex is inserted where its UV lies in the source's map (a
-/// face or an edge split; a Delaunay triangulation of each split face in its own barycentric
-/// frame, with exact predicates) and takes its exact target position. A source vertex whose UV
-/// is exactly a target vertex's takes that vertex's exact position.
+/// Builds the common mesh of two maps into one domain: the overlay of the two triangulations (a
+/// constrained Delaunay triangulation of both maps' vertices and edges, CGAL, exact intersections),
+/// so that each of its triangles lies inside one source and one target triangle and is flat on
+/// both surfaces. Its vertices are the source's (first, in order), then the target's not shared
+/// with a source vertex, then the edge crossings. Each vertex takes its point on the other surface
+/// where its UV lies in the other map (grid point location, exact orientation tests); a vertex of
+/// a map keeps its exact position on that map's surface.
 /// \pre both maps valid (one orientation, no overlap) over the same domain; in particular, the
 ///      source's border lies on the target's (rounding aside).
 CommonMesh common_mesh(const PlanarMap& source, const PlanarMap& target, const CommonMeshOptions& options = {});
