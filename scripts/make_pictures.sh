@@ -36,3 +36,10 @@ lion-head lion-head.off lion-head_chelsea.json chelsea.png
 nefertiti-landmarks nefertiti.off nefertiti_landmarks.json astronaut.png
 lion-head-landmarks lion-head.off lion-head_landmarks.json chelsea.png
 CASES
+
+# Morph strips (issue 14, paper Figs. 8-9): the shipped head pairs, five frames from source to target.
+for pair in nefertiti:lion-head mannequin-devil:lion-head; do
+  src=${pair%%:*}; dst=${pair##*:}
+  "$ctmap" morph "$(data "meshes/$src.off")" "$(data "meshes/$dst.off")" "data/pairs/${src}_${dst}.json" \
+    -o "$work/${src}_${dst}.glb" --strip "docs/morph_${src}_${dst}.png" --view three-quarter --frames 5
+done

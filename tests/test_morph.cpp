@@ -146,6 +146,36 @@ TEST(MorphKnownTruth, FiftyRandomPairSetsRecoverTheDeformation) {
     EXPECT_LT(*std::max_element(maxes.begin(), maxes.end()), 0.35);
 }
 
+// Pairs given as 3D points: inserted on both surfaces, and the morphed point lands on the target point.
+TEST(MorphPoints, PointPairsLandOnTheirTargetPoints) {
+    const TriMesh source = read_mesh(data("meshes/nefertiti.off"));
+    const TriMesh target = subdivide_midpoint(source, 1);  // the same surface, other connectivity
+    const double diag = diagonal(source);
+    PairSet pairs;
+    pairs.path = "points";
+    for (int v : {200, 153, 1, 295, 87}) pairs.pairs.push_back({"v" + std::to_string(v), {v, std::nullopt}, {v, std::nullopt}});
+    std::vector<Vec3> points;
+    for (int f : {100, 300, 450}) {
+        const Tri& t = source.faces[f];
+        const Vec3 p = (0.2 * source.positions[t[0]] + 0.3 * source.positions[t[1]] + 0.5 * source.positions[t[2]]);
+        points.push_back(p);
+        pairs.pairs.push_back({"f" + std::to_string(f), {-1, p}, {-1, p}});
+    }
+    MorphOptions o;
+    o.align = false;
+    const MorphResult m = morph_meshes(source, target, pairs, o);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const int v = m.pair_vertex[5 + k];
+        EXPECT_LE((m.common.mesh.positions[v] - points[k]).norm(), 1e-9 * diag) << pairs.pairs[5 + k].name;
+        EXPECT_LE((m.common.target_position[v] - points[k]).norm(), 1e-9 * diag) << pairs.pairs[5 + k].name;
+    }
+    // The same surface on both sides: every vertex's two positions are on one surface.
+    const SurfaceDistance d(source);
+    double worst = 0;
+    for (const Vec3& p : m.common.target_position) worst = std::max(worst, d.distance(p));
+    EXPECT_LE(worst, 1e-9 * diag);
+}
+
 // Must-show 4: bad pair files and meshes, through the real program: exit 2, the pairs named, no output.
 std::string pairs_json(const std::string& pairs) { return R"({"units": "mesh", "pairs": [)" + pairs + "]}"; }
 // nefertiti's border vertices 200, 153, 1, 295 in the order of its border.

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "ctmap/certify/certificate.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/io/glb_io.h"
@@ -23,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct MorphArgs {
-    std::string source, target, pairs, output, obj_frames, strip, view = "front";
+    std::string source, target, pairs, output, obj_frames, strip, report, view = "front";
     int frames = 5;
     bool resample = true, align = true, quiet = false;
 };
@@ -62,8 +63,34 @@ Image render_strip(const MorphResult& m, int frames, RenderView view) {
     return strip;
 }
 
+nlohmann::json stages(const MapTimings& t) {
+    return {{"triangulate", t.triangulate}, {"paths", t.paths}, {"embed", t.embed}, {"refine", t.refine},
+            {"optimise", t.optimise}, {"certify", t.certify}};
+}
+
+/// The `--report` JSON: inputs, counts, both certificates, the quality figures and the times.
+nlohmann::json morph_report(const MorphArgs& a, const PairSet& pairs, const MorphResult& m, const MorphQuality& q) {
+    const auto& t = m.timings_ms;
+    return {
+        {"inputs", {{"source", a.source}, {"target", a.target}, {"pairs", a.pairs}}},
+        {"counts",
+         {{"pairs", pairs.pairs.size()}, {"border_pairs", m.border_pairs}, {"vertices", m.common.mesh.num_vertices()},
+          {"faces", m.common.mesh.num_faces()}, {"from_source", m.common.source_vertices},
+          {"from_target", m.common.inserted}, {"shared", m.common.merged}, {"crossings", m.common.crossings}}},
+        {"certificates", {{"target_map", certificate_to_json(m.target_map.certificate)},
+                          {"source_map", certificate_to_json(m.source_map.certificate)}}},
+        {"quality",
+         {{"pair_error", q.pair_error}, {"off_target", q.target_off}, {"off_source", q.source_off},
+          {"hausdorff_target_to_morph", q.hausdorff}, {"target_mean_edge", q.target_mean_edge},
+          {"target_diagonal", q.diagonal}}},
+        {"timings_ms", {{"target_map", t.target_map}, {"source_map", t.source_map}, {"common_mesh", t.common_mesh},
+                        {"total", t.total}}},
+        {"map_stages_ms", {{"target", stages(m.target_map.timings_ms)}, {"source", stages(m.source_map.timings_ms)}}},
+    };
+}
+
 int run_morph(const MorphArgs& a) {
-    std::vector<NamedPath> outputs{{a.output, "the morph (-o)"}, {a.strip, "--strip"}};
+    std::vector<NamedPath> outputs{{a.output, "the morph (-o)"}, {a.strip, "--strip"}, {a.report, "--report"}};
     bool made_dir = false;
     if (!a.obj_frames.empty()) {
         if (!fs::exists(a.obj_frames)) made_dir = fs::create_directories(a.obj_frames);
@@ -96,6 +123,11 @@ int run_morph(const MorphArgs& a) {
             std::ofstream os(files.add(a.strip), std::ios::binary);
             os.write(png.data(), std::streamsize(png.size()));
             if (!os.flush()) throw InternalError(a.strip + ": could not write the strip");
+        }
+        if (!a.report.empty()) {
+            std::ofstream os(files.add(a.report), std::ios::binary);
+            os << morph_report(a, pairs, m, q).dump(2) << "\n";
+            if (!os.flush()) throw InternalError(a.report + ": could not write the report");
         }
         files.commit_all();
         if (a.quiet) return kExitOk;
@@ -146,9 +178,10 @@ Command add_morph_command(CLI::App& app) {
         ->check(CLI::Range(2, 200));
     sub->add_option("--obj-frames", a->obj_frames, "folder for OBJ frames frame_000.obj ... (made if missing)");
     sub->add_option("--strip", a->strip, "a PNG of the frames side by side, checker in the shared domain");
+    sub->add_option("--report", a->report, "a JSON report: counts, both maps' certificates, distances, times");
     sub->add_option("--view", a->view, "camera side of --strip: front, side, back, top, three-quarter")->capture_default_str();
     sub->add_flag("!--no-resample", a->resample,
-                  "keep the source's connectivity only (the target's vertices are not inserted)");
+                  "no overlay: the source's connectivity only, the target surface sampled at its vertices");
     sub->add_flag("!--no-align", a->align,
                   "morph the source as it is placed (default: moved, turned and scaled onto the target's pairs first)");
     sub->add_flag("-q,--quiet", a->quiet, "print nothing on success");
