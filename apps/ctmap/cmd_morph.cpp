@@ -153,7 +153,8 @@ int run_morph(const MorphArgs& a) {
         std::cout << "\n";
         return kExitOk;
     } catch (...) {
-        if (made_dir) fs::remove(a.obj_frames);  // empty: no frame was committed
+        std::error_code ec;
+        if (made_dir) fs::remove(a.obj_frames, ec);  // empty: no frame was committed
         throw;
     }
 }

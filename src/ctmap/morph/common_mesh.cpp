@@ -35,24 +35,26 @@ int map_orientation(const std::vector<Vec2>& uv, const std::vector<Tri>& faces) 
     return 1;
 }
 
-/// Each undirected edge of `faces` with two faces (interior), once.
-std::vector<std::pair<int, int>> interior_edges(const std::vector<Tri>& faces) {
+/// How many faces each undirected edge of `faces` has.
+std::map<std::pair<int, int>, int> edge_faces(const std::vector<Tri>& faces) {
     std::map<std::pair<int, int>, int> count;
     for (const Tri& t : faces)
         for (int k = 0; k < 3; ++k) ++count[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+    return count;
+}
+
+/// Each edge of `faces` with two faces (interior), once.
+std::vector<std::pair<int, int>> interior_edges(const std::vector<Tri>& faces) {
     std::vector<std::pair<int, int>> out;
-    for (const auto& [e, n] : count)
+    for (const auto& [e, n] : edge_faces(faces))
         if (n == 2) out.push_back(e);
     return out;
 }
 
 /// The vertices on the border of `faces` (ends of edges with one face).
 std::vector<int> border_vertices(const std::vector<Tri>& faces) {
-    std::map<std::pair<int, int>, int> count;
-    for (const Tri& t : faces)
-        for (int k = 0; k < 3; ++k) ++count[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
     std::set<int> out;
-    for (const auto& [e, n] : count)
+    for (const auto& [e, n] : edge_faces(faces))
         if (n == 1) out.insert({e.first, e.second});
     return {out.begin(), out.end()};
 }
