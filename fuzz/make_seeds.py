@@ -329,6 +329,7 @@ def main():
             "plain.obj": obj_text(TETRA_V, TETRA_F),
         },
         "fuzz_features": {},
+        "fuzz_pairs": {},
         "fuzz_image": {},
         "fuzz_glb": {},
         "fuzz_gltf": {},
@@ -340,6 +341,12 @@ def main():
         "features": [{"name": "a", "vertex": 0, "image": [0.25, 0.5]},
                      {"name": "b", "point": [0.1, 0.2, 0.3], "image": [0.75, 0.5]},
                      {"name": "c", "vertex": 2, "image": [0.5, 1.0]}]}, indent=1)
+    for p in sorted((ROOT / "data" / "pairs").glob("*.json")):
+        seeds["fuzz_pairs"][p.name] = p.read_bytes()
+    seeds["fuzz_pairs"]["points.json"] = json.dumps({
+        "units": "mesh",
+        "pairs": [{"name": "p", "source": {"point": [0.1, -0.2, 3e-5]}, "target": {"vertex": 4}},
+                  {"name": "q", "source": {"vertex": 2}, "target": {"point": [1, 2, 3]}}]}, indent=1)
     tiny_png = make_png(2, 2, 2)
     seeds["fuzz_image"].update({
         "rgb_8x8.png": make_png(8, 8, 2), "rgba_5x3.png": make_png(5, 3, 6), "gray_7x2.png": make_png(7, 2, 0),

@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
-all_targets=(fuzz_off fuzz_obj fuzz_ply fuzz_stl fuzz_textured_obj fuzz_features fuzz_image fuzz_glb fuzz_gltf)
+all_targets=(fuzz_off fuzz_obj fuzz_ply fuzz_stl fuzz_textured_obj fuzz_features fuzz_pairs fuzz_image fuzz_glb fuzz_gltf)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
 dir=build-fuzz
