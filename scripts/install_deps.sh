@@ -11,6 +11,7 @@ packages=(
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   clang-14 libclang-rt-14-dev llvm-14  # scripts/fuzz.sh: clang, libFuzzer's runtime, llvm-symbolizer
   nodejs chromium
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python bindings (python/) and their tests
 )
 # npm ships inside NodeSource's nodejs; only a Debian nodejs needs Debian's npm beside it.
 command -v npm >/dev/null || packages+=(npm)

@@ -1,9 +1,13 @@
 #include "ctmap/map_texture.h"
 
+#include "ctmap/io/mesh_topology.h"
+
 #include <algorithm>
 #include <cmath>
 #include <chrono>
 #include <limits>
+#include <numeric>
+#include <tuple>
 #include <memory>
 
 #include "ctmap/cut/insert_path.h"
@@ -172,6 +176,8 @@ struct Prepared {
 Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, double snap,
                  const std::string& features_file) {
     Prepared p;
+    // A caller's mesh that is no disc is a BadInput here, not a failure deep in the cut.
+    require_disc(compute_topology(input), features_file.empty() ? "the mesh" : "the mesh of " + features_file);
     // The pipeline runs in the unit box (UnitBox); map_texture puts the input's coordinates back.
     p.box = UnitBox::of(input, features_file);
     p.mesh = input;
@@ -194,9 +200,23 @@ Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, 
                 throw BadInput(features_file, "features \"" + features[j].name + "\" and \"" + features[i].name +
                                                   "\" are at the same mesh vertex " + std::to_string(fv[i]));
     for (const MapFeature& f : features) {
+        if (!f.uv.allFinite())
+            throw BadInput(features_file, "feature \"" + f.name + "\": its UV is not finite (NaN or infinity)");
         p.names.push_back(f.name);
         p.uv.push_back(f.uv);
     }
+    // Distinct image points (a caller's mistake, not the triangulation's): sorted, neighbours compared.
+    std::vector<int> order(features.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+        return std::tie(p.uv[a].x(), p.uv[a].y()) < std::tie(p.uv[b].x(), p.uv[b].y());
+    });
+    for (std::size_t k = 1; k < order.size(); ++k)
+        if (p.uv[order[k]] == p.uv[order[k - 1]]) {
+            const int a = std::min(order[k - 1], order[k]), b = std::max(order[k - 1], order[k]);
+            throw BadInput(features_file, "features \"" + features[a].name + "\" and \"" + features[b].name +
+                                              "\" have the same image point; each feature needs its own");
+        }
     return p;
 }
 

@@ -1,0 +1,233 @@
+// Python bindings of ctmap (issue 16): numpy arrays in and out, the report as a dict, ctmap's
+// errors as Python exceptions (BadInput -> ValueError, InternalError -> RuntimeError), and the
+// GIL released while a map is computed, so maps run in parallel Python threads.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "ctmap/certify/certificate.h"
+#include "ctmap/errors.h"
+#include "ctmap/io/glb_io.h"
+#include "ctmap/io/mesh_topology.h"
+#include "ctmap/io/obj_io.h"
+#include "ctmap/io/read_mesh.h"
+#include "ctmap/map_texture.h"
+
+namespace py = pybind11;
+using namespace ctmap;
+
+namespace {
+
+using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Ints = py::array_t<long long, py::array::c_style | py::array::forcecast>;
+
+/// A JSON value as the Python object json.loads would give.
+py::object to_python(const nlohmann::json& j) {
+    return py::module_::import("json").attr("loads")(j.dump());
+}
+
+/// V (n x 3 doubles, finite) and F (m x 3 indices in [0, n)) as a TriMesh. \throw BadInput.
+TriMesh mesh_from(const Doubles& V, const Ints& F) {
+    if (V.ndim() != 2 || V.shape(1) != 3) throw BadInput("V", "must be an n x 3 array of vertex positions");
+    if (F.ndim() != 2 || F.shape(1) != 3) throw BadInput("F", "must be an m x 3 array of vertex indices (triangles)");
+    TriMesh m;
+    const auto v = V.unchecked<2>();
+    for (py::ssize_t i = 0; i < V.shape(0); ++i) {
+        const Vec3 p(v(i, 0), v(i, 1), v(i, 2));
+        if (!p.allFinite()) throw BadInput("V", "vertex " + std::to_string(i) + " has a non-finite coordinate");
+        m.positions.push_back(p);
+    }
+    const auto f = F.unchecked<2>();
+    for (py::ssize_t i = 0; i < F.shape(0); ++i) {
+        Tri t;
+        for (int k = 0; k < 3; ++k) {
+            const long long x = f(i, k);
+            if (x < 0 || x >= V.shape(0))
+                throw BadInput("F", "face " + std::to_string(i) + " has vertex index " + std::to_string(x) +
+                                        " out of range (there are " + std::to_string(V.shape(0)) + " vertices)");
+            t[k] = int(x);
+        }
+        m.faces.push_back(t);
+    }
+    return m;
+}
+
+/// The features (dicts with name, vertex or point, image) for map_texture. \throw BadInput naming the feature.
+std::vector<MapFeature> features_from(const py::list& features, const std::string& units, std::optional<std::pair<int, int>> size) {
+    if (units != "pixels" && units != "uv") throw BadInput("units", "must be \"pixels\" or \"uv\"");
+    if (units == "pixels" && (!size || size->first <= 0 || size->second <= 0))
+        throw BadInput("image_size", "give image_size=(width, height) for features in pixels (or units=\"uv\")");
+    std::vector<MapFeature> out;
+    std::set<std::string> names;
+    for (const py::handle h : features) {
+        const py::dict d = py::reinterpret_borrow<py::dict>(h);
+        MapFeature f;
+        if (!d.contains("name")) throw BadInput("features", "feature #" + std::to_string(out.size()) + " has no \"name\"");
+        f.name = py::str(d["name"]);
+        const std::string who = "feature \"" + f.name + "\"";
+        if (!names.insert(f.name).second) throw BadInput("features", "two features are named \"" + f.name + "\"");
+        if (d.contains("vertex") == d.contains("point"))
+            throw BadInput("features", who + ": give exactly one of \"vertex\" or \"point\"");
+        if (d.contains("vertex")) {
+            const long long v = d["vertex"].cast<long long>();
+            if (v < 0) throw BadInput("features", who + ": vertex " + std::to_string(v) + " is negative");
+            f.vertex = int(std::min<long long>(v, 2000000000LL));
+        } else {
+            const auto p = d["point"].cast<std::vector<double>>();
+            if (p.size() != 3 || !Vec3(p[0], p[1], p[2]).allFinite())
+                throw BadInput("features", who + ": \"point\" must be 3 finite numbers");
+            f.point = Vec3(p[0], p[1], p[2]);
+        }
+        if (!d.contains("image")) throw BadInput("features", who + ": no \"image\" point");
+        const auto q = d["image"].cast<std::vector<double>>();
+        if (q.size() != 2 || !std::isfinite(q[0]) || !std::isfinite(q[1]))
+            throw BadInput("features", who + ": \"image\" must be 2 finite numbers");
+        f.uv = units == "uv" ? Vec2(q[0], q[1]) : image_to_uv(Vec2(q[0], q[1]), size->first, size->second);
+        if (!(f.uv.x() >= 0 && f.uv.x() <= 1 && f.uv.y() >= 0 && f.uv.y() <= 1))
+            throw BadInput("features", who + ": its image point lies outside the image");
+        out.push_back(f);
+    }
+    return out;
+}
+
+py::array_t<double> positions_array(const std::vector<Vec3>& p) {
+    py::array_t<double> a({py::ssize_t(p.size()), py::ssize_t(3)});
+    auto m = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < p.size(); ++i)
+        for (int k = 0; k < 3; ++k) m(py::ssize_t(i), k) = p[i][k];
+    return a;
+}
+
+py::array_t<double> uv_array(const std::vector<Vec2>& p) {
+    py::array_t<double> a({py::ssize_t(p.size()), py::ssize_t(2)});
+    auto m = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < p.size(); ++i)
+        for (int k = 0; k < 2; ++k) m(py::ssize_t(i), k) = p[i][k];
+    return a;
+}
+
+py::array_t<int> faces_array(const std::vector<Tri>& f) {
+    py::array_t<int> a({py::ssize_t(f.size()), py::ssize_t(3)});
+    auto m = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < f.size(); ++i)
+        for (int k = 0; k < 3; ++k) m(py::ssize_t(i), k) = f[i][k];
+    return a;
+}
+
+/// A TexturedMesh with per-vertex UVs from numpy arrays. \throw BadInput.
+TexturedMesh textured_from(const Doubles& V, const Ints& F, const Doubles& UV) {
+    TriMesh m = mesh_from(V, F);
+    if (UV.ndim() != 2 || UV.shape(1) != 2 || UV.shape(0) != V.shape(0))
+        throw BadInput("UV", "must be an n x 2 array, one UV per vertex");
+    std::vector<Vec2> uv;
+    const auto u = UV.unchecked<2>();
+    for (py::ssize_t i = 0; i < UV.shape(0); ++i) uv.emplace_back(u(i, 0), u(i, 1));
+    return TexturedMesh::with_vertex_uvs(std::move(m), std::move(uv));
+}
+
+py::dict map_texture_py(const Doubles& V, const Ints& F, const py::list& features, std::optional<std::pair<int, int>> image_size,
+                        const std::string& units, const std::string& refine, const std::string& border,
+                        const std::string& border_mode, int iterations, double tolerance, double snap) {
+    const TriMesh mesh = mesh_from(V, F);
+    require_disc(compute_topology(mesh), "the mesh (V, F)");
+    const std::vector<MapFeature> fs = features_from(features, units, image_size);
+    if (refine != "isometric" && refine != "paper" && refine != "none")
+        throw BadInput("refine", "must be \"isometric\", \"paper\" or \"none\"");
+    if (border != "auto" && border != "given") throw BadInput("border", "must be \"auto\" or \"given\"");
+    if (border_mode != "free" && border_mode != "fixed" && border_mode != "unbounded")
+        throw BadInput("border_mode", "must be \"free\", \"fixed\" or \"unbounded\"");
+    MapOptions o;  // as `ctmap map` sets them (apps/ctmap/cmd_map.cpp)
+    o.refine = refine != "none";
+    o.refine_mode = refine == "paper" ? RefineMode::paper : RefineMode::isometric;
+    o.auto_border = border == "auto";
+    o.isometric.border = border_mode == "fixed" ? BorderMode::fixed : BorderMode::free;
+    o.isometric.keep_in_box = border_mode != "unbounded";
+    o.isometric.max_iterations = iterations;
+    o.isometric.tolerance = tolerance;
+    o.snap = snap;
+    MapResult r;
+    {
+        py::gil_scoped_release release;  // the map touches no Python object
+        r = map_texture(mesh, fs, o, "features");
+    }
+    const TexturedMesh tm = r.textured();
+    py::array_t<double> corners({py::ssize_t(tm.uv_faces.size()), py::ssize_t(3), py::ssize_t(2)});
+    auto c = corners.mutable_unchecked<3>();
+    for (std::size_t f = 0; f < tm.uv_faces.size(); ++f)
+        for (int k = 0; k < 3; ++k)
+            for (int d = 0; d < 2; ++d) c(py::ssize_t(f), k, d) = tm.uvs[tm.uv_faces[f][k]][d];
+    py::dict out;
+    out["V"] = positions_array(r.cut.mesh.positions);
+    out["F"] = faces_array(r.cut.mesh.faces);
+    out["UV"] = uv_array(r.uv);
+    out["UV_corners"] = corners;
+    out["chart"] = py::array_t<int>(py::ssize_t(tm.chart.size()), tm.chart.data());
+    out["feature_vertex"] = r.cut.feature_vertex;
+    out["certificate"] = to_python(certificate_to_json(r.certificate));
+    return out;
+}
+
+py::dict certify_py(const Doubles& V, const Ints& F, const Doubles& UV, std::vector<int> feature_vertex,
+                    const std::optional<Doubles>& feature_uv) {
+    const TexturedMesh tm = textured_from(V, F, UV);
+    std::vector<Vec2> fuv;
+    if (feature_uv) {
+        const auto u = feature_uv->unchecked<2>();
+        for (py::ssize_t i = 0; i < feature_uv->shape(0); ++i) fuv.emplace_back(u(i, 0), u(i, 1));
+    }
+    if (fuv.size() != feature_vertex.size()) throw BadInput("feature_uv", "give one UV per feature vertex");
+    for (int v : feature_vertex)
+        if (v < 0 || v >= tm.mesh.num_vertices()) throw BadInput("feature_vertex", "vertex " + std::to_string(v) + " is out of range");
+    Certificate c;
+    {
+        py::gil_scoped_release release;
+        c = certify(tm, feature_vertex, fuv);
+    }
+    return to_python(certificate_to_json(c));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(ctmap, m) {
+    m.doc() = "ctmap: constrained texture mapping (Guo et al.), exact features and a certified injective map";
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const BadInput& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const InternalError& e) {
+            PyErr_SetString(PyExc_RuntimeError, e.what());
+        }
+    });
+    m.def("read_mesh", [](const std::string& path) {
+        const TriMesh mesh = read_mesh(path);
+        return py::make_tuple(positions_array(mesh.positions), faces_array(mesh.faces));
+    }, py::arg("path"), "Reads an OFF/OBJ/PLY/STL mesh: returns (V, F), V float64 n x 3, F int32 m x 3 (0-based).");
+    m.def("map_texture", &map_texture_py, py::arg("V"), py::arg("F"), py::arg("features"), py::arg("image_size") = py::none(),
+          py::arg("units") = "pixels", py::arg("refine") = "isometric", py::arg("border") = "auto",
+          py::arg("border_mode") = "free", py::arg("iterations") = 1000, py::arg("tolerance") = 1e-6, py::arg("snap") = -1.0,
+          R"(Maps the disc mesh (V, F) so that every feature lands exactly on its image point, with a certified
+injective map (paper §2; `ctmap map` with the same options gives the same UVs, bit for bit).
+
+features: a list of dicts {"name": str, "vertex": int or "point": [x, y, z], "image": [x, y]}; image points in
+pixels of an image of image_size=(width, height) (units="pixels", the default) or in UV (units="uv").
+Returns a dict: V, F (the cut mesh: the input's vertices first, then inserted ones), UV (one per vertex, OBJ's
+convention v up), UV_corners (m x 3 x 2), chart (m), feature_vertex, certificate.
+Raises ValueError for bad input (naming the feature), RuntimeError for an internal failure.
+The GIL is released while the map is computed.)");
+    m.def("certify", &certify_py, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("feature_vertex") = std::vector<int>{},
+          py::arg("feature_uv") = py::none(),
+          "The validity certificate of a map with one UV per vertex (exact predicates), as a dict.");
+    m.def("write_obj", [](const std::string& path, const Doubles& V, const Ints& F, const Doubles& UV, const std::string& image) {
+        write_obj(textured_from(V, F, UV), path, image);
+    }, py::arg("path"), py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("image") = "",
+          "Writes OBJ + MTL (the MTL names `image`), atomically.");
+    m.def("write_glb", [](const std::string& path, const Doubles& V, const Ints& F, const Doubles& UV, const std::string& image) {
+        write_glb(textured_from(V, F, UV), path, image);
+    }, py::arg("path"), py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("image") = "",
+          "Writes a binary glTF with `image` embedded as its texture.");
+}
