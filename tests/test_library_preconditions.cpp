@@ -101,5 +101,31 @@ TEST(LibraryPreconditions, ClosedMesh) {
     expect_bad_input(tet, f, {"closed"});
 }
 
+// The matrix overload gives the map of the TriMesh overload, corner by corner, and checks its arrays.
+TEST(LibraryArrays, EigenOverloadGivesTheSameMap) {
+    Example x;
+    Eigen::MatrixXd V(x.mesh.num_vertices(), 3);
+    Eigen::MatrixXi F(x.mesh.num_faces(), 3);
+    for (int i = 0; i < x.mesh.num_vertices(); ++i) V.row(i) = x.mesh.positions[i].transpose();
+    for (int f = 0; f < x.mesh.num_faces(); ++f) F.row(f) << x.mesh.faces[f][0], x.mesh.faces[f][1], x.mesh.faces[f][2];
+    const MapArrays a = map_texture(V, F, x.features);
+    const MapResult r = map_texture(x.mesh, x.features);
+    ASSERT_TRUE(a.result.certificate.valid);
+    ASSERT_EQ(a.F.rows(), r.cut.mesh.num_faces());
+    for (int f = 0; f < r.cut.mesh.num_faces(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            ASSERT_EQ(a.F(f, k), r.cut.mesh.faces[f][k]);
+            ASSERT_EQ(a.UV(3 * f + k, 0), r.uv[r.cut.mesh.faces[f][k]].x());
+            ASSERT_EQ(a.UV(3 * f + k, 1), r.uv[r.cut.mesh.faces[f][k]].y());
+        }
+    ASSERT_EQ(a.feature_vertex.size(), Eigen::Index(r.cut.feature_vertex.size()));
+    for (std::size_t i = 0; i < r.cut.feature_vertex.size(); ++i) EXPECT_EQ(a.feature_vertex(Eigen::Index(i)), r.cut.feature_vertex[i]);
+    EXPECT_EQ(a.chart.size(), a.F.rows());
+    Eigen::MatrixXi bad = F;
+    bad(4, 2) = int(V.rows());
+    EXPECT_THROW(map_texture(V, bad, x.features), BadInput);
+    EXPECT_THROW(map_texture(Eigen::MatrixXd(V.leftCols(2)), F, x.features), BadInput);
+}
+
 }  // namespace
 }  // namespace ctmap::test

@@ -388,3 +388,44 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
 }
 
 }  // namespace ctmap
+
+namespace ctmap {
+
+MapArrays map_texture(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<MapFeature>& features,
+                      const MapOptions& options) {
+    if (V.cols() != 3) throw BadInput("V", "must have 3 columns (x, y, z), has " + std::to_string(V.cols()));
+    if (F.cols() != 3) throw BadInput("F", "must have 3 columns (a triangle's vertices), has " + std::to_string(F.cols()));
+    TriMesh mesh;
+    for (Eigen::Index i = 0; i < V.rows(); ++i) {
+        if (!V.row(i).allFinite()) throw BadInput("V", "vertex " + std::to_string(i) + " has a non-finite coordinate");
+        mesh.positions.emplace_back(V(i, 0), V(i, 1), V(i, 2));
+    }
+    for (Eigen::Index i = 0; i < F.rows(); ++i) {
+        for (int k = 0; k < 3; ++k)
+            if (F(i, k) < 0 || F(i, k) >= V.rows())
+                throw BadInput("F", "face " + std::to_string(i) + " has vertex index " + std::to_string(F(i, k)) +
+                                        " out of range (there are " + std::to_string(V.rows()) + " vertices)");
+        mesh.faces.push_back({F(i, 0), F(i, 1), F(i, 2)});
+    }
+    MapArrays out;
+    out.result = map_texture(mesh, features, options);
+    const MapResult& r = out.result;
+    const TexturedMesh tm = r.textured();
+    out.V.resize(r.cut.mesh.num_vertices(), 3);
+    for (int i = 0; i < r.cut.mesh.num_vertices(); ++i) out.V.row(i) = r.cut.mesh.positions[i].transpose();
+    out.F.resize(r.cut.mesh.num_faces(), 3);
+    out.UV.resize(3 * Eigen::Index(r.cut.mesh.num_faces()), 2);
+    out.chart.resize(r.cut.mesh.num_faces());
+    for (int f = 0; f < r.cut.mesh.num_faces(); ++f) {
+        for (int k = 0; k < 3; ++k) {
+            out.F(f, k) = r.cut.mesh.faces[f][k];
+            out.UV.row(3 * Eigen::Index(f) + k) = tm.uvs[tm.uv_faces[f][k]].transpose();
+        }
+        out.chart(f) = tm.chart[f];
+    }
+    out.feature_vertex.resize(Eigen::Index(r.cut.feature_vertex.size()));
+    for (std::size_t i = 0; i < r.cut.feature_vertex.size(); ++i) out.feature_vertex(Eigen::Index(i)) = r.cut.feature_vertex[i];
+    return out;
+}
+
+}  // namespace ctmap

@@ -4,6 +4,7 @@
 /// in the image, the cut into matching patches, the mean value embedding of each patch, the
 /// relaxation, and the certificate. `ctmap map`, `ctmap demo`, the tests and the benchmarks all
 /// call this one function, so what they measure is what users run.
+#include <Eigen/Core>
 #include <functional>
 #include <string>
 #include <vector>
@@ -118,6 +119,22 @@ struct MapResult {
 ///        invalid map is ever returned).
 MapResult map_texture(const TriMesh& mesh, const std::vector<MapFeature>& features, const MapOptions& options = {},
                       const std::string& features_file = "");
+
+/// A map as arrays (issue 16), for callers that hold meshes as Eigen matrices (libigl's V, F).
+struct MapArrays {
+    Eigen::MatrixXd V;           ///< n' x 3: the cut mesh (the input's vertices first, in order)
+    Eigen::MatrixXi F;           ///< m' x 3
+    Eigen::MatrixXd UV;          ///< 3m' x 2: per face corner, corner k of face f in row 3f + k (OBJ's convention, v up)
+    Eigen::VectorXi chart;       ///< m': the chart of each face (0: one chart)
+    Eigen::VectorXi feature_vertex;  ///< per given feature, its row of V
+    MapResult result;            ///< everything else: certificate, distortion, timings, the cut
+};
+
+/// `map_texture` on matrices: `V` n x 3 positions, `F` m x 3 vertex indices (0-based).
+/// \pre none beyond the types: sizes, finite positions and indices in range are checked.
+/// \throw BadInput for a malformed V or F and as map_texture.
+MapArrays map_texture(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::vector<MapFeature>& features,
+                      const MapOptions& options = {});
 
 /// What `check_feature_layout` found: the triangulation `map_texture` would cut along (over the
 /// given features, then the added border features) and the border features it would add.
