@@ -64,11 +64,14 @@ std::vector<MapFeature> features_from(const py::list& features, const std::strin
     std::vector<MapFeature> out;
     std::set<std::string> names;
     for (const py::handle h : features) {
+        if (!py::isinstance<py::dict>(h))
+            throw BadInput("features", "feature #" + std::to_string(out.size()) + " is not a dict");
         const py::dict d = py::reinterpret_borrow<py::dict>(h);
         MapFeature f;
         if (!d.contains("name")) throw BadInput("features", "feature #" + std::to_string(out.size()) + " has no \"name\"");
         f.name = py::str(d["name"]);
         const std::string who = "feature \"" + f.name + "\"";
+        try {
         if (!names.insert(f.name).second) throw BadInput("features", "two features are named \"" + f.name + "\"");
         if (d.contains("vertex") == d.contains("point"))
             throw BadInput("features", who + ": give exactly one of \"vertex\" or \"point\"");
@@ -89,34 +92,27 @@ std::vector<MapFeature> features_from(const py::list& features, const std::strin
         f.uv = units == "uv" ? Vec2(q[0], q[1]) : image_to_uv(Vec2(q[0], q[1]), size->first, size->second);
         if (!(f.uv.x() >= 0 && f.uv.x() <= 1 && f.uv.y() >= 0 && f.uv.y() <= 1))
             throw BadInput("features", who + ": its image point lies outside the image");
+        } catch (const py::cast_error&) {
+            throw BadInput("features", who + ": \"vertex\" must be an integer, \"point\" and \"image\" lists of numbers");
+        }
         out.push_back(f);
     }
     return out;
 }
 
-py::array_t<double> positions_array(const std::vector<Vec3>& p) {
-    py::array_t<double> a({py::ssize_t(p.size()), py::ssize_t(3)});
-    auto m = a.mutable_unchecked<2>();
-    for (std::size_t i = 0; i < p.size(); ++i)
-        for (int k = 0; k < 3; ++k) m(py::ssize_t(i), k) = p[i][k];
+/// Rows of N numbers (a Vec3, Vec2 or Tri per row) as an n x N numpy array of T.
+template <class T, int N, class Row>
+py::array_t<T> rows_array(const std::vector<Row>& rows) {
+    py::array_t<T> a({py::ssize_t(rows.size()), py::ssize_t(N)});
+    auto m = a.template mutable_unchecked<2>();
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        for (int k = 0; k < N; ++k) m(py::ssize_t(i), k) = T(rows[i][k]);
     return a;
 }
 
-py::array_t<double> uv_array(const std::vector<Vec2>& p) {
-    py::array_t<double> a({py::ssize_t(p.size()), py::ssize_t(2)});
-    auto m = a.mutable_unchecked<2>();
-    for (std::size_t i = 0; i < p.size(); ++i)
-        for (int k = 0; k < 2; ++k) m(py::ssize_t(i), k) = p[i][k];
-    return a;
-}
-
-py::array_t<int> faces_array(const std::vector<Tri>& f) {
-    py::array_t<int> a({py::ssize_t(f.size()), py::ssize_t(3)});
-    auto m = a.mutable_unchecked<2>();
-    for (std::size_t i = 0; i < f.size(); ++i)
-        for (int k = 0; k < 3; ++k) m(py::ssize_t(i), k) = f[i][k];
-    return a;
-}
+py::array_t<double> positions_array(const std::vector<Vec3>& p) { return rows_array<double, 3>(p); }
+py::array_t<double> uv_array(const std::vector<Vec2>& p) { return rows_array<double, 2>(p); }
+py::array_t<int> faces_array(const std::vector<Tri>& f) { return rows_array<int, 3>(f); }
 
 /// A TexturedMesh with per-vertex UVs from numpy arrays. \throw BadInput.
 TexturedMesh textured_from(const Doubles& V, const Ints& F, const Doubles& UV) {
@@ -125,7 +121,10 @@ TexturedMesh textured_from(const Doubles& V, const Ints& F, const Doubles& UV) {
         throw BadInput("UV", "must be an n x 2 array, one UV per vertex");
     std::vector<Vec2> uv;
     const auto u = UV.unchecked<2>();
-    for (py::ssize_t i = 0; i < UV.shape(0); ++i) uv.emplace_back(u(i, 0), u(i, 1));
+    for (py::ssize_t i = 0; i < UV.shape(0); ++i) {
+        uv.emplace_back(u(i, 0), u(i, 1));
+        if (!uv.back().allFinite()) throw BadInput("UV", "the UV of vertex " + std::to_string(i) + " is not finite");
+    }
     return TexturedMesh::with_vertex_uvs(std::move(m), std::move(uv));
 }
 
@@ -176,6 +175,7 @@ py::dict certify_py(const Doubles& V, const Ints& F, const Doubles& UV, std::vec
     const TexturedMesh tm = textured_from(V, F, UV);
     std::vector<Vec2> fuv;
     if (feature_uv) {
+        if (feature_uv->ndim() != 2 || feature_uv->shape(1) != 2) throw BadInput("feature_uv", "must be a k x 2 array");
         const auto u = feature_uv->unchecked<2>();
         for (py::ssize_t i = 0; i < feature_uv->shape(0); ++i) fuv.emplace_back(u(i, 0), u(i, 1));
     }

@@ -91,9 +91,13 @@ nlohmann::json morph_report(const MorphArgs& a, const PairSet& pairs, const Morp
 
 int run_morph(const MorphArgs& a) {
     std::vector<NamedPath> outputs{{a.output, "the morph (-o)"}, {a.strip, "--strip"}, {a.report, "--report"}};
-    bool made_dir = false;
+    const RenderView view = parse_render_view(a.view);  // before any work
+    std::vector<fs::path> made;  // folders this run creates, deepest first
     if (!a.obj_frames.empty()) {
-        if (!fs::exists(a.obj_frames)) made_dir = fs::create_directories(a.obj_frames);
+        for (fs::path p = fs::absolute(a.obj_frames); !p.empty() && !fs::exists(p); p = p.parent_path()) made.push_back(p);
+        std::error_code ec;
+        fs::create_directories(a.obj_frames, ec);
+        if (ec) throw BadInput(a.obj_frames, "cannot create the --obj-frames folder: " + ec.message());
         for (int k = 0; k < a.frames; ++k) {
             const std::string obj = frame_path(a.obj_frames, k);
             outputs.push_back({obj, "--obj-frames"});
@@ -119,7 +123,7 @@ int run_morph(const MorphArgs& a) {
             write_obj(tm, frame_path(a.obj_frames, k), "", files);
         }
         if (!a.strip.empty()) {
-            const std::string png = encode_png(render_strip(m, a.frames, parse_render_view(a.view)));
+            const std::string png = encode_png(render_strip(m, a.frames, view));
             std::ofstream os(files.add(a.strip), std::ios::binary);
             os.write(png.data(), std::streamsize(png.size()));
             if (!os.flush()) throw InternalError(a.strip + ": could not write the strip");
@@ -154,7 +158,7 @@ int run_morph(const MorphArgs& a) {
         return kExitOk;
     } catch (...) {
         std::error_code ec;
-        if (made_dir) fs::remove(a.obj_frames, ec);  // empty: no frame was committed
+        for (const fs::path& p : made) fs::remove(p, ec);  // empty: no frame was committed
         throw;
     }
 }

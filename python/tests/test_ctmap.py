@@ -103,6 +103,20 @@ def test_bad_features_raise_value_error_naming_the_feature(case, features, words
         assert w in str(e.value), (case, str(e.value))
 
 
+def test_wrong_python_types_raise_value_error():
+    V, F = ctmap.read_mesh(MESH)
+    with pytest.raises(ValueError, match="is not a dict"):
+        ctmap.map_texture(V, F, [None] + FEATURES, image_size=SIZE)
+    with pytest.raises(ValueError, match=named(INTERIOR[0])):
+        ctmap.map_texture(V, F, with_change(lambda fs: fs[INTERIOR[0]].update(image="here")), image_size=SIZE)
+    def far_point(fs):
+        fs[INTERIOR[0]].pop("vertex", None)
+        fs[INTERIOR[0]]["point"] = [0.0, 0.0, 50.0]
+
+    with pytest.raises(ValueError, match="off the surface"):
+        ctmap.map_texture(V, F, with_change(far_point), image_size=SIZE)
+
+
 def test_bad_arrays_raise_value_error():
     V, F = ctmap.read_mesh(MESH)
     with pytest.raises(ValueError, match="out of range"):

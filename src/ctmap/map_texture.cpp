@@ -62,7 +62,7 @@ Vec3 closest_bary(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
 /// 4 decimals land on the vertex they were copied from. A point within 1e-6 of the diagonal of an
 /// edge splits the edge (no sliver faces). `moved` receives the largest distance a point moved.
 std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& features, double vertex_snap,
-                                  int& inserted, double& moved) {
+                                  int& inserted, double& moved, const std::string& file = "") {
     std::vector<int> vertex(features.size(), -1);
     inserted = 0;
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max()), hi = -lo;
@@ -83,6 +83,8 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
         }
         if (!wm) wm = std::make_unique<WorkMesh>(mesh);
         const Vec3& p = features[i].point;
+        if (features[i].vertex < -1 || !p.allFinite())
+            throw BadInput("", "feature \"" + features[i].name + "\": give a vertex index (>= 0) or a finite 3D point");
         int best_face = -1;
         Vec3 best_bary;
         double best = std::numeric_limits<double>::max();
@@ -93,6 +95,13 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
             const double d = (q - p).squaredNorm();
             if (d < best) best = d, best_face = f, best_bary = l;
         }
+        // A point farther from the surface than the tolerance is a caller's mistake (the CLI says so
+        // before, through check_features_on_mesh; library callers learn it here).
+        const double diag = (hi - lo).norm(), allowed = std::max(snap, vertex_snap);
+        if (best_face < 0 || !(std::sqrt(best) <= allowed * (1 + 1e-9)))
+            throw BadInput(file, "feature \"" + features[i].name + "\": its point is " +
+                                     (best_face < 0 ? std::string("far") : std::to_string(std::sqrt(best) / diag) + " of the mesh's diagonal") +
+                                     " off the surface (at most " + std::to_string(allowed / diag) + " allowed; --snap)");
         const Tri& t = wm->faces[best_face];
         int at_vertex = -1;
         double at_distance = std::numeric_limits<double>::max();
@@ -191,7 +200,7 @@ Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, 
                                               " does not exist (the mesh has " + std::to_string(input.num_vertices()) +
                                               " vertices)");
     const double unit_snap = snap >= 0 ? snap / p.box.half : kDefaultSnapFraction * diagonal(p.mesh);
-    p.feature_vertex = feature_vertices(p.mesh, unit_features, unit_snap, p.point_features, p.moved);
+    p.feature_vertex = feature_vertices(p.mesh, unit_features, unit_snap, p.point_features, p.moved, features_file);
     p.moved *= p.box.half;
     const std::vector<int>& fv = p.feature_vertex;
     for (std::size_t i = 0; i < fv.size(); ++i)

@@ -221,7 +221,10 @@ void write_morph_glb(const TriMesh& base, const std::vector<Vec3>& target, const
         const Eigen::Vector3f p = float_position(base.positions[v], int(v), path);
         const Eigen::Vector3f q = float_position(target[v], int(v), path);
         pos.insert(pos.end(), {p.x(), p.y(), p.z()});
-        dpos.insert(dpos.end(), {q.x() - p.x(), q.y() - p.y(), q.z() - p.z()});
+        const Eigen::Vector3f d = q - p;
+        if (!d.allFinite())
+            throw BadInput(path, "vertex " + std::to_string(v) + " moves farther than 32-bit floats hold; scale the meshes");
+        dpos.insert(dpos.end(), {d.x(), d.y(), d.z()});
         const Eigen::Vector3f a = n0[v].cast<float>(), b = n1[v].cast<float>();
         nrm.insert(nrm.end(), {a.x(), a.y(), a.z()});
         dnrm.insert(dnrm.end(), {b.x() - a.x(), b.y() - a.y(), b.z() - a.z()});

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "ctmap/certify/certificate.h"
+#include "ctmap/errors.h"
 #include "ctmap/morph/locate_2d.h"
 
 namespace ctmap {
@@ -33,6 +34,10 @@ int map_orientation(const std::vector<Vec2>& uv, const std::vector<Tri>& faces) 
     for (const Tri& t : faces)
         if (const int o = orientation_2d(uv[t[0]], uv[t[1]], uv[t[2]]); o != 0) return o;
     return 1;
+}
+
+double uv_area(const Vec2& a, const Vec2& b, const Vec2& c) {
+    return 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
 }
 
 /// How many faces each undirected edge of `faces` has.
@@ -91,17 +96,17 @@ CommonMesh common_mesh(const PlanarMap& source, const PlanarMap& target, const C
         source_vh[v]->info() = int(v);
     }
     int next = S.num_vertices();
+    const std::set<Overlay::Vertex_handle> from_source(source_vh.begin(), source_vh.end());
     for (std::size_t v = 0; v < tuv.size(); ++v) {
         target_vh[v] = overlay.insert(EK::Point_2(tuv[v].x(), tuv[v].y()));
-        if (target_vh[v]->info() >= 0 && target_vh[v]->info() < S.num_vertices() &&
-            source_vh[target_vh[v]->info()] == target_vh[v]) {
+        if (from_source.count(target_vh[v])) {
             ++out.merged;  // a source vertex's point: shared
         } else {
             target_vh[v]->info() = next++;
             ++out.inserted;
         }
     }
-    // Fresh vertices carry info 0 by default: mark the ones made by constraint intersections.
+    // The vertices made by constraint intersections are the others (their info is not set yet).
     std::set<Overlay::Vertex_handle> known(source_vh.begin(), source_vh.end());
     known.insert(target_vh.begin(), target_vh.end());
     // Both borders lie on the same polygon's sides, each up to rounding: as two chains they would
@@ -176,11 +181,20 @@ CommonMesh common_mesh(const PlanarMap& source, const PlanarMap& target, const C
         }
     }
     const bool flip = map_orientation(suv, S.faces) < 0;  // turned to the source's orientation
+    double kept = 0;
     for (auto f = overlay.finite_faces_begin(); f != overlay.finite_faces_end(); ++f) {
         if (outside.count(f)) continue;
         const int a = f->vertex(0)->info(), b = f->vertex(1)->info(), d = f->vertex(2)->info();
         out.mesh.faces.push_back(flip ? Tri{a, d, b} : Tri{a, b, d});
+        kept += uv_area(out.uv[a], out.uv[b], out.uv[d]);
     }
+    // The kept faces cover the source's domain once (a chain edge split by CGAL would let the
+    // outside fill leak inside and drop faces): say so rather than return a mesh with holes.
+    double domain = 0;
+    for (const Tri& t : S.faces) domain += uv_area(suv[t[0]], suv[t[1]], suv[t[2]]);
+    if (!(std::abs(kept - domain) <= 1e-6 * domain))
+        throw InternalError("common mesh: the overlay's faces cover " + std::to_string(kept) + " of the domain's " +
+                            std::to_string(domain) + " (UV area)");
     return out;
 }
 

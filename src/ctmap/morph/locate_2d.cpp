@@ -25,6 +25,15 @@ Vec3 barycentric(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
     return s > 0 ? Vec3(l / s) : Vec3(1.0 / 3, 1.0 / 3, 1.0 / 3);
 }
 
+/// The number of grid cells along a side of `cells` cells' length, clamped in double (NaN: 1).
+int cell_count(double cells) { return cells >= 1 ? int(std::min(std::ceil(cells), 4096.0)) : 1; }
+
+/// The cell (of `n`, each `size` long) holding offset `d`, clamped in double (NaN: 0).
+int cell_of(double d, double size, int n) {
+    const double c = std::floor(d / size);
+    return c >= 0 ? int(std::min(c, double(n - 1))) : 0;
+}
+
 }  // namespace
 
 TriangleLocator::TriangleLocator(const std::vector<Vec2>& uv, const std::vector<Tri>& faces) : uv_(uv), faces_(faces) {
@@ -36,18 +45,18 @@ TriangleLocator::TriangleLocator(const std::vector<Vec2>& uv, const std::vector<
     const Vec2 size = box.sizes().cwiseMax(1e-300);
     const double cells = std::max(1.0, 0.5 * double(faces.size()));
     const double side = std::sqrt(size.x() * size.y() / cells);
-    nx_ = std::clamp(int(std::ceil(size.x() / side)), 1, 4096);
-    ny_ = std::clamp(int(std::ceil(size.y() / side)), 1, 4096);
+    nx_ = cell_count(size.x() / side);
+    ny_ = cell_count(size.y() / side);
     lo_ = box.min();
     cell_ = Vec2(size.x() / nx_, size.y() / ny_);
     std::vector<int> count(std::size_t(nx_) * ny_ + 1, 0);
     auto range = [&](const Tri& t, int& i0, int& i1, int& j0, int& j1) {
         Eigen::AlignedBox2d b;
         for (int v : t) b.extend(uv[v]);
-        i0 = std::clamp(int(std::floor((b.min().x() - lo_.x()) / cell_.x())), 0, nx_ - 1);
-        i1 = std::clamp(int(std::floor((b.max().x() - lo_.x()) / cell_.x())), 0, nx_ - 1);
-        j0 = std::clamp(int(std::floor((b.min().y() - lo_.y()) / cell_.y())), 0, ny_ - 1);
-        j1 = std::clamp(int(std::floor((b.max().y() - lo_.y()) / cell_.y())), 0, ny_ - 1);
+        i0 = cell_of(b.min().x() - lo_.x(), cell_.x(), nx_);
+        i1 = cell_of(b.max().x() - lo_.x(), cell_.x(), nx_);
+        j0 = cell_of(b.min().y() - lo_.y(), cell_.y(), ny_);
+        j1 = cell_of(b.max().y() - lo_.y(), cell_.y(), ny_);
     };
     for (const Tri& t : faces) {
         int i0, i1, j0, j1;
@@ -69,8 +78,8 @@ TriangleLocator::TriangleLocator(const std::vector<Vec2>& uv, const std::vector<
 Location TriangleLocator::locate(const Vec2& p) const {
     Location out;
     if (faces_.empty()) return out;
-    const int ci = std::clamp(int(std::floor((p.x() - lo_.x()) / cell_.x())), 0, nx_ - 1);
-    const int cj = std::clamp(int(std::floor((p.y() - lo_.y()) / cell_.y())), 0, ny_ - 1);
+    const int ci = cell_of(p.x() - lo_.x(), cell_.x(), nx_);
+    const int cj = cell_of(p.y() - lo_.y(), cell_.y(), ny_);
     const int c = cell_index(ci, cj);
     for (int k = start_[c]; k < start_[c + 1]; ++k) {
         const Tri& t = faces_[items_[k]];

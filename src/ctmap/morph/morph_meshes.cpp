@@ -42,6 +42,8 @@ std::vector<int> place_ends(TriMesh& mesh, const PairSet& set, bool source, doub
             throw BadInput(set.path, "pair '" + p.name + "': " + side + " vertex " + std::to_string(e.vertex) +
                                          " does not exist (" + file + " has " + std::to_string(mesh.num_vertices()) +
                                          " vertices)");
+        if (e.vertex < 0 && !e.point)
+            throw BadInput(set.path, "pair '" + p.name + "': the " + side + " end has neither a vertex nor a point");
         if (e.vertex < 0) f.point = *e.point;
         ends.push_back(f);
     }

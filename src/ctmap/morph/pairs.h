@@ -38,7 +38,7 @@ PairSet read_pairs(const std::string& path);
 /// The same from text (`path` names it in messages).
 PairSet parse_pairs(const std::string& text, const std::string& path);
 
-/// The pairs as JSON text in the file's format (points written with 17 digits).
+/// The pairs as JSON text in the file's format (numbers in the shortest form that reads back exactly).
 std::string pairs_to_json(const PairSet& pairs);
 
 }  // namespace ctmap
