@@ -11,6 +11,7 @@
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/io/glb_io.h"
 #include "ctmap/io/image.h"
+#include "ctmap/io/map_report.h"
 #include "ctmap/io/obj_io.h"
 #include "ctmap/io/output_paths.h"
 #include "ctmap/io/read_mesh.h"
@@ -79,6 +80,8 @@ nlohmann::json morph_report(const MorphArgs& a, const PairSet& pairs, const Morp
           {"from_target", m.common.inserted}, {"shared", m.common.merged}, {"crossings", m.common.crossings}}},
         {"certificates", {{"target_map", certificate_to_json(m.target_map.certificate)},
                           {"source_map", certificate_to_json(m.source_map.certificate)}}},
+        {"distortion", {{"target_map", distortion_json(m.target_map.certificate.distortion)},
+                        {"source_map", distortion_json(m.source_map.certificate.distortion)}}},
         {"quality",
          {{"pair_error", q.pair_error}, {"off_target", q.target_off}, {"off_source", q.source_off},
           {"hausdorff_target_to_morph", q.hausdorff}, {"target_mean_edge", q.target_mean_edge},
@@ -142,7 +145,10 @@ int run_morph(const MorphArgs& a) {
                   << " from the source's map, " << m.common.inserted << " from the target's, " << m.common.merged
                   << " shared, " << m.common.crossings << " edge crossings), " << m.common.mesh.num_faces() << " faces\n"
                   << "  maps: target " << (m.target_map.certificate.valid ? "certified" : "INVALID") << ", source "
-                  << (m.source_map.certificate.valid ? "certified" : "INVALID") << "\n"
+                  << (m.source_map.certificate.valid ? "certified" : "INVALID")
+                  << "; distortion (symmetric Dirichlet / 4, 1 = isometric): target map "
+                  << m.target_map.certificate.distortion.symmetric_dirichlet / 4 << ", source map "
+                  << m.source_map.certificate.distortion.symmetric_dirichlet / 4 << "\n"
                   << "  pairs on their target points: max error " << q.pair_error << " (" << q.pair_error / q.diagonal
                   << " of the target's diagonal)\n"
                   << "  morphed vertices off the target surface: max " << q.target_off << " (" << q.target_off / q.diagonal

@@ -7,6 +7,8 @@ namespace {
 
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
+}  // namespace
+
 nlohmann::json distortion_json(const Distortion& d) {
     return {{"symmetric_dirichlet", number_or_null(d.symmetric_dirichlet)},
             {"conformal_mean", number_or_null(d.conformal_mean)},
@@ -16,7 +18,6 @@ nlohmann::json distortion_json(const Distortion& d) {
             {"l2_stretch", number_or_null(d.l2_stretch)}};
 }
 
-}  // namespace
 
 nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
     nlohmann::json j;

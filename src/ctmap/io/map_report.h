@@ -9,6 +9,9 @@
 
 namespace ctmap {
 
+/// The distortion measures as JSON (a non-finite measure as null), as every report writes them.
+nlohmann::json distortion_json(const Distortion& d);
+
 /// The inputs a report names.
 struct MapReportInputs {
     std::string mesh, features, image;
