@@ -5,6 +5,8 @@
 # input over 5 s) or running out of memory (2 GB).
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET (default 60)] [TARGET ...]   (fuzz/README.md)
 set -euo pipefail
+# Whatever ends the script early names itself, on stdout and stderr (CI shows a part of the output).
+trap 'rc=$?; msg="fuzz: stopped at scripts/fuzz.sh line $LINENO (exit $rc): $BASH_COMMAND"; echo "$msg"; echo "$msg" >&2; exit $rc' ERR
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
@@ -65,7 +67,7 @@ failed=()
 regressed=()
 for t in "${targets[@]}"; do
   exe="$dir/fuzz/$t"
-  [ -x "$exe" ] || { echo "fuzz: no target $t (targets: ${all_targets[*]})" >&2; exit 1; }
+  [ -x "$exe" ] || { echo "fuzz: no target $t (targets: ${all_targets[*]})" ; echo "fuzz: no target $t" >&2; exit 1; }
   work="$runs/$t"
   mkdir -p "$work/corpus"
   cp fuzz/corpus/"$t"/* "$work/corpus/"
@@ -84,6 +86,13 @@ for t in "${targets[@]}"; do
       continue
     fi
   fi
+  if [ "${CTMAP_FUZZ_REGRESSIONS_ONLY:-0}" = 1 ]; then
+    n_regressions=0
+    [ ! -d "fuzz/regressions/$t" ] || n_regressions=$(find "fuzz/regressions/$t" -type f | wc -l)
+    printf 'fuzz: %-18s regression inputs: %s passed\n' "$t" "$n_regressions"
+    continue
+  fi
+  echo "fuzz: $t: ${seconds} s of fuzzing"
   # The outer timeout only guards against libFuzzer itself hanging.
   TMPDIR="$PWD/$work/tmp" timeout --signal=KILL $((seconds + 120)) "$exe" "$work/corpus" -max_total_time="$seconds" -timeout=5 \
     -rss_limit_mb=2048 -max_len="$(max_len_of "$t")" -detect_leaks=1 -print_final_stats=1 \
@@ -123,6 +132,13 @@ for t in "${targets[@]}"; do
     [ "$result" != hung ] || tail -3 "$log" | sed 's/^/    /'
   fi
 done
+if [ "${CTMAP_FUZZ_REGRESSIONS_ONLY:-0}" = 1 ]; then
+  if [ ${#failed[@]} -gt 0 ]; then
+    echo "fuzz: FAILED regression inputs: ${failed[*]}"; echo "fuzz: FAILED regression inputs: ${failed[*]}" >&2
+    exit 1
+  fi
+  exit 0
+fi
 echo "fuzz: ${#targets[@]} targets, ${seconds} s each, $((SECONDS - start)) s in all; logs in $runs"
 # CTMAP_FUZZ_REPORT_ONLY=1: what the campaign finds is printed but does not fail the run; a
 # regression input that fails still does (the test command uses this: see scripts/test.sh).
