@@ -151,7 +151,7 @@ py::dict map_texture_py(const Doubles& V, const Ints& F, const py::list& feature
     MapResult r;
     {
         py::gil_scoped_release release;  // the map touches no Python object
-        r = map_texture(mesh, fs, o, "features");
+        r = map_texture(mesh, fs, o);
     }
     const TexturedMesh tm = r.textured();
     py::array_t<double> corners({py::ssize_t(tm.uv_faces.size()), py::ssize_t(3), py::ssize_t(2)});

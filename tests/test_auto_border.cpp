@@ -70,7 +70,7 @@ void expect_mapped(const TriMesh& mesh, const std::vector<MapFeature>& features,
 /// The paper's rules refuse the set (so the case needs the automatic border).
 bool refused_by_the_paper_rules(const TriMesh& mesh, const std::vector<MapFeature>& features) {
     try {
-        check_feature_layout(mesh, features, "", -1, false);
+        check_feature_layout(mesh, features, -1, false);
     } catch (const BadInput&) {
         return true;
     }
@@ -186,7 +186,7 @@ TEST(AutoBorder, StarterLandmarksSpreadOverTheImageAndMap) {
             const MapResult r = map_texture(mesh, features, opt);
             EXPECT_TRUE(r.certificate.valid) << what;
             EXPECT_EQ(r.auto_border.vertex.empty(), border > 0) << what;
-            if (border > 0) EXPECT_NO_THROW(check_feature_layout(mesh, features, "", -1, false)) << what;
+            if (border > 0) EXPECT_NO_THROW(check_feature_layout(mesh, features, -1, false)) << what;
         }
     }
 }

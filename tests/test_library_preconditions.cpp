@@ -34,13 +34,28 @@ struct Example {
     }
 };
 
-/// map_texture throws BadInput (not InternalError) whose message holds every word of `words`.
+/// map_texture throws BadInput (not InternalError) whose message holds every word of `words` and
+/// names no file (a library caller gave none; issue 16), and `naming_file` adds a caller's file
+/// to it, keeping the exception's type.
 void expect_bad_input(const TriMesh& mesh, const std::vector<MapFeature>& features, std::vector<std::string> words) {
     try {
         map_texture(mesh, features);
         ADD_FAILURE() << "no exception";
     } catch (const BadInput& e) {
         for (const std::string& w : words) EXPECT_NE(std::string(e.what()).find(w), std::string::npos) << e.what();
+        EXPECT_EQ(e.file(), "") << e.what();
+        EXPECT_EQ(std::string(e.what()), e.problem());
+        const bool topology = dynamic_cast<const TopologyError*>(&e) != nullptr;
+        try {
+            naming_file("in.json", [&] { return map_texture(mesh, features); });
+            ADD_FAILURE() << "no exception the second time";
+        } catch (const TopologyError& t) {
+            EXPECT_TRUE(topology) << t.what();
+            EXPECT_EQ(std::string(t.what()), e.what()) << "a mesh problem is not the features file's";
+        } catch (const BadInput& b) {
+            EXPECT_FALSE(topology) << b.what();
+            EXPECT_EQ(std::string(b.what()), "in.json: " + std::string(e.what()));
+        }
     } catch (const std::exception& e) {
         ADD_FAILURE() << "not BadInput: " << e.what();
     }

@@ -100,10 +100,12 @@ TEST(Map, TwoFeaturesAtOneVertexAreRejected) {
     features.back().vertex = -1;
     features.back().point = mesh.positions[features.front().vertex];
     try {
-        map_texture(mesh, features, {}, "f.json");
+        naming_file("f.json", [&] { return map_texture(mesh, features); });
         FAIL() << "no error";
     } catch (const BadInput& e) {
-        EXPECT_NE(std::string(e.what()).find("f.json"), std::string::npos) << e.what();
+        // map_texture names no file (issue 16); naming_file adds the caller's.
+        EXPECT_EQ(e.file(), "f.json") << e.what();
+        EXPECT_EQ(std::string(e.what()).rfind("f.json: ", 0), 0u) << e.what();
         EXPECT_NE(std::string(e.what()).find(features.front().name), std::string::npos) << e.what();
     }
 }

@@ -154,7 +154,8 @@ MapRun run_map(const MapArgs& a) {
     options.snap = a.snap;
     Progress progress(!a.quiet, isatty(fileno(stderr)));
     options.progress = [&](const std::string& stage, int done, int total) { progress(stage, done, total); };
-    run.result = map_texture(mesh, map_features(features, run.width, run.height), options, a.features);
+    run.result = naming_file(a.features,
+                             [&] { return map_texture(mesh, map_features(features, run.width, run.height), options); });
     progress.clear();
     if (!a.quiet && !run.result.auto_border.vertex.empty())
         std::cout << "  " << auto_border_line(run.result.auto_border, run.result.auto_border_fixed) << std::endl;

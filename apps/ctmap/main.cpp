@@ -85,7 +85,8 @@ int cmd_validate(const std::string& mesh_path, const std::string& features_path,
     int w = 0, h = 0;
     const std::string image = resolve_feature_image(fs, image_arg, w, h);
     const double moved = check_features_on_mesh(fs, mesh, mesh_path, snap);
-    const FeatureLayout layout = check_feature_layout(mesh, map_features(fs, w, h), features_path, snap, border == "auto");
+    const FeatureLayout layout = naming_file(
+        features_path, [&] { return check_feature_layout(mesh, map_features(fs, w, h), snap, border == "auto"); });
     const FeatureTriangulation& tri = layout.triangulation;
     std::cout << "ok: " << mesh_path << " is a disc (" << t.vertices << " vertices, " << t.faces << " faces); "
               << fs.features.size() << " features in " << features_path << " on a " << w << " x " << h << " image"

@@ -46,6 +46,22 @@ public:
     using InternalError::InternalError;
 };
 
+/// Runs `f()` and returns what it returns; a BadInput it throws that names no file is thrown again
+/// naming `file`. The algorithms take no file names (issue 16): a caller that read the features
+/// from a file (the CLI, the renderer) adds it to the message this way. A TopologyError is about
+/// the mesh, not that file, and passes unchanged.
+template <class F>
+decltype(auto) naming_file(const std::string& file, F&& f) {
+    try {
+        return f();
+    } catch (const TopologyError&) {
+        throw;
+    } catch (const BadInput& e) {
+        if (!e.file().empty() || file.empty()) throw;
+        throw BadInput(file, e.problem());
+    }
+}
+
 /// Exit codes of the command-line program (DESIGN §3).
 enum ExitCode : int { kExitOk = 0, kExitInvalid = 1, kExitBadInput = 2, kExitInternal = 3 };
 

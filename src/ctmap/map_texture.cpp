@@ -62,7 +62,7 @@ Vec3 closest_bary(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
 /// 4 decimals land on the vertex they were copied from. A point within 1e-6 of the diagonal of an
 /// edge splits the edge (no sliver faces). `moved` receives the largest distance a point moved.
 std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& features, double vertex_snap,
-                                  int& inserted, double& moved, const std::string& file = "") {
+                                  int& inserted, double& moved) {
     std::vector<int> vertex(features.size(), -1);
     inserted = 0;
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max()), hi = -lo;
@@ -99,7 +99,7 @@ std::vector<int> feature_vertices(TriMesh& mesh, const std::vector<MapFeature>& 
         // before, through check_features_on_mesh; library callers learn it here).
         const double diag = (hi - lo).norm(), allowed = std::max(snap, vertex_snap);
         if (best_face < 0 || !(std::sqrt(best) <= allowed * (1 + 1e-9)))
-            throw BadInput(file, "feature \"" + features[i].name + "\": its point is " +
+            throw BadInput("", "feature \"" + features[i].name + "\": its point is " +
                                      (best_face < 0 ? std::string("far") : std::to_string(std::sqrt(best) / diag) + " of the mesh's diagonal") +
                                      " off the surface (at most " + std::to_string(allowed / diag) + " allowed; --snap)");
         const Tri& t = wm->faces[best_face];
@@ -153,7 +153,7 @@ struct UnitBox {
     double half = 1;  ///< half the largest side of the bounding box
 
     /// \throw BadInput if every vertex is at one point.
-    static UnitBox of(const TriMesh& mesh, const std::string& features_file) {
+    static UnitBox of(const TriMesh& mesh) {
         Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max()), hi = -lo;
         for (const Vec3& p : mesh.positions) {
             lo = lo.cwiseMin(p);
@@ -163,7 +163,7 @@ struct UnitBox {
         b.center = 0.5 * lo + 0.5 * hi;  // halves first: no overflow near the largest doubles
         b.half = (0.5 * hi - 0.5 * lo).maxCoeff();
         if (!(b.half > 0) || !std::isfinite(b.half))
-            throw BadInput(features_file, "the mesh has no extent: all its vertices are at one point");
+            throw BadInput("", "the mesh has no extent: all its vertices are at one point");
         return b;
     }
     Vec3 in(const Vec3& p) const { return (p - center) / half; }
@@ -182,13 +182,12 @@ struct Prepared {
     double moved = 0;  ///< the largest distance a point feature moved onto the mesh (input units)
 };
 
-Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, double snap,
-                 const std::string& features_file) {
+Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, double snap) {
     Prepared p;
     // A caller's mesh that is no disc is a BadInput here, not a failure deep in the cut.
-    require_disc(compute_topology(input), features_file.empty() ? "the mesh" : "the mesh of " + features_file);
+    require_disc(compute_topology(input), "");
     // The pipeline runs in the unit box (UnitBox); map_texture puts the input's coordinates back.
-    p.box = UnitBox::of(input, features_file);
+    p.box = UnitBox::of(input);
     p.mesh = input;
     for (Vec3& q : p.mesh.positions) q = p.box.in(q);
     std::vector<MapFeature> unit_features = features;
@@ -196,21 +195,21 @@ Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, 
         if (f.vertex < 0) f.point = p.box.in(f.point);
     for (const MapFeature& f : features)
         if (f.vertex >= input.num_vertices())
-            throw BadInput(features_file, "feature \"" + f.name + "\": vertex " + std::to_string(f.vertex) +
+            throw BadInput("", "feature \"" + f.name + "\": vertex " + std::to_string(f.vertex) +
                                               " does not exist (the mesh has " + std::to_string(input.num_vertices()) +
                                               " vertices)");
     const double unit_snap = snap >= 0 ? snap / p.box.half : kDefaultSnapFraction * diagonal(p.mesh);
-    p.feature_vertex = feature_vertices(p.mesh, unit_features, unit_snap, p.point_features, p.moved, features_file);
+    p.feature_vertex = feature_vertices(p.mesh, unit_features, unit_snap, p.point_features, p.moved);
     p.moved *= p.box.half;
     const std::vector<int>& fv = p.feature_vertex;
     for (std::size_t i = 0; i < fv.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
             if (fv[i] == fv[j])
-                throw BadInput(features_file, "features \"" + features[j].name + "\" and \"" + features[i].name +
+                throw BadInput("", "features \"" + features[j].name + "\" and \"" + features[i].name +
                                                   "\" are at the same mesh vertex " + std::to_string(fv[i]));
     for (const MapFeature& f : features) {
         if (!f.uv.allFinite())
-            throw BadInput(features_file, "feature \"" + f.name + "\": its UV is not finite (NaN or infinity)");
+            throw BadInput("", "feature \"" + f.name + "\": its UV is not finite (NaN or infinity)");
         p.names.push_back(f.name);
         p.uv.push_back(f.uv);
     }
@@ -223,7 +222,7 @@ Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, 
     for (std::size_t k = 1; k < order.size(); ++k)
         if (p.uv[order[k]] == p.uv[order[k - 1]]) {
             const int a = std::min(order[k - 1], order[k]), b = std::max(order[k - 1], order[k]);
-            throw BadInput(features_file, "features \"" + features[a].name + "\" and \"" + features[b].name +
+            throw BadInput("", "features \"" + features[a].name + "\" and \"" + features[b].name +
                                               "\" have the same image point; each feature needs its own");
         }
     return p;
@@ -231,10 +230,8 @@ Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, 
 
 /// Places the automatic border (domain/auto_border.h) when the given features need one and
 /// appends its features to `in` (after the given ones, named auto_border_1, ...).
-AutoBorder add_border_features(Prepared& in, const std::string& features_file) {
-    AutoBorderOptions opt;
-    opt.features_file = features_file;
-    AutoBorder added = place_border_features(in.mesh, in.feature_vertex, in.uv, in.names, opt);
+AutoBorder add_border_features(Prepared& in) {
+    AutoBorder added = place_border_features(in.mesh, in.feature_vertex, in.uv, in.names);
     for (std::size_t j = 0; j < added.vertex.size(); ++j) {
         std::string name = "auto_border_" + std::to_string(j + 1);
         while (std::find(in.names.begin(), in.names.end(), name) != in.names.end()) name += "'";
@@ -249,18 +246,16 @@ AutoBorder add_border_features(Prepared& in, const std::string& features_file) {
 }  // namespace
 
 FeatureLayout check_feature_layout(const TriMesh& input, const std::vector<MapFeature>& features,
-                                   const std::string& features_file, double snap, bool auto_border) {
-    Prepared in = prepare(input, features, snap, features_file);
+                                   double snap, bool auto_border) {
+    Prepared in = prepare(input, features, snap);
     FeatureLayout out;
-    if (auto_border) out.auto_border = add_border_features(in, features_file);
-    TriangulateOptions topt;
-    topt.features_file = features_file;
-    out.triangulation = triangulate_features(in.uv, border_features(in.mesh, in.feature_vertex), in.names, topt);
+    if (auto_border) out.auto_border = add_border_features(in);
+    out.triangulation = triangulate_features(in.uv, border_features(in.mesh, in.feature_vertex), in.names);
     return out;
 }
 
 std::vector<int> place_point_features(TriMesh& mesh, const std::vector<MapFeature>& features, double snap) {
-    const UnitBox box = UnitBox::of(mesh, "");
+    const UnitBox box = UnitBox::of(mesh);
     TriMesh unit = mesh;
     for (Vec3& q : unit.positions) q = box.in(q);
     std::vector<MapFeature> unit_features = features;
@@ -291,16 +286,15 @@ std::vector<MapFeature> map_features(const FeatureSet& fs, int width, int height
     return out;
 }
 
-MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& features, const MapOptions& options,
-                      const std::string& features_file) {
+MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& features, const MapOptions& options) {
     const auto start = Clock::now();
     auto stage = [&](const char* name) {
         if (options.progress) options.progress(name, 0, 0);
     };
     MapResult r;
-    Prepared in = prepare(input, features, options.snap, features_file);
+    Prepared in = prepare(input, features, options.snap);
     const std::size_t given = in.feature_vertex.size();
-    if (options.auto_border) r.auto_border = add_border_features(in, features_file);
+    if (options.auto_border) r.auto_border = add_border_features(in);
     TriMesh& mesh = in.mesh;
     const std::vector<int>& fv = in.feature_vertex;
     const UnitBox& box = in.box;
@@ -310,9 +304,7 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
 
     stage("triangulate");
     auto t0 = Clock::now();
-    TriangulateOptions topt;
-    topt.features_file = features_file;
-    r.triangulation = triangulate_features(r.feature_uv, border_features(mesh, fv), in.names, topt);
+    r.triangulation = triangulate_features(r.feature_uv, border_features(mesh, fv), in.names);
     r.timings_ms.triangulate = ms_since(t0);
 
     stage("paths");

@@ -114,11 +114,10 @@ struct MapResult {
 /// \pre `mesh` is a manifold disc (io's `require_disc`); features are distinct, finite, with UVs
 ///      that `triangulate_features` accepts.
 /// \throw BadInput naming the features for an infeasible feature layout (fewer than 3 border
-///        features, a border polygon that is not simple, ...), with `features_file` in the
-///        message; InternalError if the cut fails or the map does not pass its certificate (no
+///        features, a border polygon that is not simple, ...), naming no file (a caller that read
+///        the features from a file adds it: `naming_file` in errors.h); InternalError if the cut fails or the map does not pass its certificate (no
 ///        invalid map is ever returned).
-MapResult map_texture(const TriMesh& mesh, const std::vector<MapFeature>& features, const MapOptions& options = {},
-                      const std::string& features_file = "");
+MapResult map_texture(const TriMesh& mesh, const std::vector<MapFeature>& features, const MapOptions& options = {});
 
 /// A map as arrays (issue 16), for callers that hold meshes as Eigen matrices (libigl's V, F).
 struct MapArrays {
@@ -150,7 +149,7 @@ struct FeatureLayout {
 /// and the message `ctmap map` would.
 /// \pre as map_texture. \throw BadInput as map_texture.
 FeatureLayout check_feature_layout(const TriMesh& mesh, const std::vector<MapFeature>& features,
-                                   const std::string& features_file = "", double snap = -1, bool auto_border = true);
+                                   double snap = -1, bool auto_border = true);
 
 /// Puts the point features of `features` on `mesh` as vertices, as `map_texture` does (a point
 /// within `snap` of a vertex uses it, else the face or edge it lies on is split); the input's

@@ -214,7 +214,6 @@ std::string auto_border_reason(const std::vector<Vec2>& uv, const std::vector<in
 
 AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv, const std::vector<Vec2>& uv,
                                  const std::vector<std::string>& names, const AutoBorderOptions& opt) {
-    const std::string& file = opt.features_file;
     const std::vector<int> loop = border_loop(mesh);
     const int nl = int(loop.size()), n = int(uv.size());
     std::vector<int> at(mesh.num_vertices(), -1);
@@ -227,10 +226,10 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
     out.reason = auto_border_reason(uv, given, names);
     if (out.reason.empty()) return out;
     const int k = int(given.size());
-    if (n == 0) throw BadInput(file, "no features: at least one is needed");
+    if (n == 0) throw BadInput("", "no features: at least one is needed");
     for (int i = 0; i < n; ++i)
         if (at[fv[i]] < 0 && (uv[i].x() <= 0 || uv[i].x() >= 1 || uv[i].y() <= 0 || uv[i].y() >= 1))
-            throw BadInput(file, "feature " + feature_label(names, i) + " lies on the image's edge but not on the mesh "
+            throw BadInput("", "feature " + feature_label(names, i) + " lies on the image's edge but not on the mesh "
                                  "border: no border inside the image can hold it (move it inside, or mark a border vertex there)");
 
     // The orientation: the given border polygon's (3 or more), else whichever of the similarity
@@ -288,7 +287,7 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
         if (at[fv[i]] < 0)
             inset = std::min({inset, 0.5 * uv[i].x(), 0.5 * uv[i].y(), 0.5 * (1 - uv[i].x()), 0.5 * (1 - uv[i].y())});
     region = clip_to_image(region, inset);
-    if (region.size() < 3) throw BadInput(file, out.reason + ", and no region inside the image can hold the border");
+    if (region.size() < 3) throw BadInput("", out.reason + ", and no region inside the image can hold the border");
 
     // Arc length along the loop from loop[0], for the added features' angles.
     std::vector<double> arc(nl + 1, 0);
@@ -406,7 +405,7 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
             if (samples >= 2 * nl) break;
         }
     }
-    throw BadInput(file, out.reason + ", and ctmap could not place border features around them (the given border "
+    throw BadInput("", out.reason + ", and ctmap could not place border features around them (the given border "
                                       "features' order around the others, or too few border vertices between two "
                                       "of them); give border features yourself, or use --border given to see the "
                                       "straight-border rules");

@@ -32,7 +32,6 @@ struct AutoBorderOptions {
     /// How far (UV units: the image is [0, 1]^2) the border keeps from every feature, less where
     /// the image's edge is closer.
     double margin = 0.03;
-    std::string features_file;  ///< names the file in error messages
 };
 
 /// What `place_border_features` added.

@@ -63,11 +63,10 @@ std::string feature_label(const std::vector<std::string>& names, int i) {
 }
 
 FeatureTriangulation triangulate_features(const std::vector<Vec2>& uv, const std::vector<int>& border,
-                                          const std::vector<std::string>& names, const TriangulateOptions& opt) {
-    const std::string& file = opt.features_file;
+                                          const std::vector<std::string>& names, const TriangulateOptions& /*options*/) {
     const int n = int(uv.size());
     if (border.size() < 3)
-        throw BadInput(file, "only " + std::to_string(border.size()) +
+        throw BadInput("", "only " + std::to_string(border.size()) +
                                  " feature(s) lie on the mesh border; at least 3 border features are needed "
                                  "to fix the map's border");
     std::vector<char> on_border(n, 0);
@@ -101,7 +100,7 @@ FeatureTriangulation triangulate_features(const std::vector<Vec2>& uv, const std
                 bad = CGAL::collinear(pa, shared, pb) && !CGAL::collinear_are_ordered_along_line(pa, shared, pb);
             }
             if (bad)
-                throw BadInput(file, "the border features' order in the image does not match their order along the "
+                throw BadInput("", "the border features' order in the image does not match their order along the "
                                      "mesh border: border edges " +
                                          feature_label(names, border[i]) + "-" + feature_label(names, border[i2]) + " and " +
                                          feature_label(names, border[j]) + "-" + feature_label(names, border[j2]) +
@@ -117,7 +116,7 @@ FeatureTriangulation triangulate_features(const std::vector<Vec2>& uv, const std
     if (!outside.empty()) {
         std::string list;
         for (const auto& s : outside) list += (list.empty() ? "" : ", ") + s;
-        throw BadInput(file, "interior feature(s) outside the border polygon in the image: " + list +
+        throw BadInput("", "interior feature(s) outside the border polygon in the image: " + list +
                                  " (a feature inside the mesh must lie inside the polygon of the border features)");
     }
 
@@ -129,7 +128,7 @@ FeatureTriangulation triangulate_features(const std::vector<Vec2>& uv, const std
     }
     for (int i = 0; i < m; ++i) cdt.insert_constraint(vh[border[i]], vh[border[(i + 1) % m]]);
     if (int(cdt.number_of_vertices()) != n)
-        throw InternalError(file + ": the feature triangulation gained or lost vertices (constraints intersect)");
+        throw InternalError("the feature triangulation gained or lost vertices (constraints intersect)");
     mark_domains(cdt);
 
     FeatureTriangulation ft;

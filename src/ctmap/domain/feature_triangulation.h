@@ -28,10 +28,8 @@ struct FeatureTriangulation {
     bool mirrored = false;
 };
 
-/// Options for `triangulate_features`.
-struct TriangulateOptions {
-    std::string features_file;  ///< names the file in error messages
-};
+/// Options for `triangulate_features` (none yet: the messages name no file, issue 16).
+struct TriangulateOptions {};
 
 /// How messages name feature `i`: 'name' in quotes, or #i when it has none.
 std::string feature_label(const std::vector<std::string>& names, int i);

@@ -171,7 +171,7 @@ MorphResult morph_meshes(const TriMesh& source_in, const TriMesh& target_in, con
         f.uv = corner[i];
         tf.push_back(f);
     }
-    out.target_map = map_texture(target, tf, mo, pairs.path);
+    out.target_map = naming_file(pairs.path, [&] { return map_texture(target, tf, mo); });
     out.timings_ms.target_map = ms_since(t0);
 
     // The source onto the target's map: every pair at its target's point.
@@ -185,7 +185,7 @@ MorphResult morph_meshes(const TriMesh& source_in, const TriMesh& target_in, con
         f.uv = out.target_map.uv[tv[i]];
         sf.push_back(f);
     }
-    out.source_map = map_texture(source, sf, mo, pairs.path);
+    out.source_map = naming_file(pairs.path, [&] { return map_texture(source, sf, mo); });
     out.timings_ms.source_map = ms_since(t0);
 
     if (options.progress) options.progress("common mesh");

@@ -98,19 +98,18 @@ RenderInputs read_render_inputs(const RenderFiles& files, const std::vector<Rend
         require_disc(compute_topology(in.mesh.mesh), files.map);
         std::vector<std::string> names;
         for (const Feature& f : in.features.features) names.push_back(f.name);
-        TriangulateOptions topt;
-        topt.features_file = files.features;
         // Where the features cannot make the paper's border, the border features `ctmap map
         // --border auto` places (fitted again on this mesh, so they can differ a little).
-        AutoBorderOptions aopt;
-        aopt.features_file = files.features;
-        const AutoBorder added = place_border_features(in.mesh.mesh, in.feature_vertex, in.feature_uv, names, aopt);
+        const AutoBorder added = naming_file(files.features, [&] {
+            return place_border_features(in.mesh.mesh, in.feature_vertex, in.feature_uv, names);
+        });
         std::vector<int> fv = in.feature_vertex;
         std::vector<Vec2> uv = in.feature_uv;
         fv.insert(fv.end(), added.vertex.begin(), added.vertex.end());
         uv.insert(uv.end(), added.uv.begin(), added.uv.end());
         names.resize(fv.size());
-        in.triangulation = triangulate_features(uv, border_features(in.mesh.mesh, fv), names, topt);
+        in.triangulation = naming_file(
+            files.features, [&] { return triangulate_features(uv, border_features(in.mesh.mesh, fv), names); });
     }
     return in;
 }
