@@ -19,7 +19,9 @@ int main(int argc, char** argv) {
         ctmap::FeatureSet fs = ctmap::read_features(argv[2]);
         int w = 0, h = 0;
         ctmap::resolve_feature_image(fs, "", w, h);
-        const ctmap::MapResult r = ctmap::map_texture(mesh, ctmap::map_features(fs, w, h), {}, argv[2]);
+        // map_texture names no file in its messages; naming_file adds the features file's name.
+        const ctmap::MapResult r =
+            ctmap::naming_file(argv[2], [&] { return ctmap::map_texture(mesh, ctmap::map_features(fs, w, h)); });
         std::cout << "map of " << argv[1] << ": " << r.certificate.triangles << " triangles, "
                   << (r.certificate.valid ? "valid" : "INVALID") << ", " << r.certificate.flipped << " flipped\n";
         return r.certificate.valid ? 0 : 1;
