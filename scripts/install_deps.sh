@@ -12,6 +12,7 @@ packages=(
   clang-14 libclang-rt-14-dev llvm-14  # scripts/fuzz.sh: clang, libFuzzer's runtime, llvm-symbolizer
   nodejs chromium
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python bindings (python/) and their tests
+  python3-venv python3-pip python3-setuptools python3-wheel  # `pip install .` (pyproject.toml, setup.py)
 )
 # npm ships inside NodeSource's nodejs; only a Debian nodejs needs Debian's npm beside it.
 command -v npm >/dev/null || packages+=(npm)
