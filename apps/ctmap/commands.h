@@ -67,5 +67,6 @@ void print_map_summary(const MapArgs& args, const MapRun& run, std::ostream& os)
 Command add_map_command(CLI::App& app);      // cmd_map.cpp
 Command add_starter_command(CLI::App& app);  // cmd_starter.cpp
 Command add_morph_command(CLI::App& app);    // cmd_morph.cpp
+Command add_serve_command(CLI::App& app);    // cmd_serve.cpp
 
 }  // namespace ctmap::cli

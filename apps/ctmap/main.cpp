@@ -249,6 +249,7 @@ int run(int argc, char** argv) {
         cli::add_render_command(app),
         cli::add_starter_command(app),
         cli::add_morph_command(app),
+        cli::add_serve_command(app),
     };
 
     if (argc >= 2 && argv[1][0] != '-') {  // a mistyped command: say which one was meant

@@ -1,0 +1,212 @@
+// `ctmap serve`: the editing session of issue 15 over HTTP on localhost (cpp-httplib). The JSON
+// API (README "ctmap serve") maps again on every change and answers with a certified map or the
+// message `ctmap map` would give; the session keeps its last valid features and map.
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "commands.h"
+#include "ctmap/edit/edit_session.h"
+#include "ctmap/errors.h"
+#include "ctmap/io/features.h"
+#include "ctmap/io/glb_io.h"
+#include "ctmap/io/image.h"
+#include "ctmap/io/input_file.h"
+#include "ctmap/io/mesh_topology.h"
+#include "ctmap/io/obj_io.h"
+#include "ctmap/io/read_mesh.h"
+// After Eigen (through the headers above): httplib.h includes <resolv.h>, whose `_res` macro
+// breaks Eigen's headers if they come later.
+#include <httplib.h>
+
+namespace ctmap::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ServeArgs {
+    std::string mesh, image, features, host = "127.0.0.1";
+    int port = 8080;
+    double snap = -1;
+    std::string border = "auto";
+    bool quiet = false;
+};
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop = true; }
+
+/// A JSON answer with its status.
+void reply(httplib::Response& res, int status, const nlohmann::json& body) {
+    res.status = status;
+    res.set_content(body.dump(), "application/json");
+}
+
+/// Runs `f` on the session under the lock; BadInput -> 422, InternalError -> 500 (the CLI's exit
+/// codes 2 and 3 in "exit_code"), a malformed request -> 400. The server never stops on an error.
+template <class F>
+void guarded(std::mutex& m, httplib::Response& res, F&& f) {
+    try {
+        std::lock_guard<std::mutex> lock(m);
+        reply(res, 200, f());
+    } catch (const nlohmann::json::exception& e) {
+        reply(res, 400, {{"error", std::string("the request is not the JSON expected: ") + e.what()}, {"exit_code", 2}});
+    } catch (const BadInput& e) {
+        reply(res, 422, {{"error", e.what()}, {"exit_code", int(kExitBadInput)}});
+    } catch (const std::exception& e) {
+        reply(res, 500, {{"error", e.what()}, {"exit_code", int(kExitInternal)}});
+    }
+}
+
+/// Writes the session's map with `write` into a private scratch folder and returns file `name`'s bytes.
+template <class W>
+std::string map_file_bytes(const std::string& name, W&& write) {
+    std::string tmpl = (fs::temp_directory_path() / "ctmap_serve_XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) throw InternalError("cannot make a scratch folder in " + fs::temp_directory_path().string());
+    const fs::path dir(tmpl);
+    std::string bytes;
+    try {
+        write(dir);
+        std::ifstream in(dir / name, std::ios::binary);
+        std::ostringstream os;
+        os << in.rdbuf();
+        bytes = os.str();
+    } catch (...) {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+        throw;
+    }
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    return bytes;
+}
+
+int run_serve(const ServeArgs& a) {
+    const TriMesh mesh = read_mesh(a.mesh);
+    require_disc(compute_topology(mesh), a.mesh);
+    const Image img = read_image(a.image);
+    std::optional<FeatureSet> initial;
+    std::string features_path = a.features;
+    if (!a.features.empty() && fs::exists(a.features)) {
+        read_input_file(a.features, "features file");  // a regular file within the size limit
+        initial = read_features(a.features);
+        if (initial->units == "pixels" && initial->image_size &&
+            ((*initial->image_size)[0] != img.width || (*initial->image_size)[1] != img.height))
+            throw BadInput(a.features, "\"image_size\" [" + std::to_string((*initial->image_size)[0]) + ", " +
+                                           std::to_string((*initial->image_size)[1]) + "] differs from the size of " +
+                                           a.image + " (" + std::to_string(img.width) + " x " +
+                                           std::to_string(img.height) + ")");
+    } else if (!a.features.empty()) {
+        // A new file: it will be created by the first save; its folder must exist now.
+        const fs::path parent = fs::absolute(a.features).parent_path();
+        if (!fs::is_directory(parent)) throw BadInput(a.features, "its folder does not exist");
+    }
+    EditSessionOptions opt;
+    opt.map.snap = a.snap;
+    opt.map.auto_border = a.border == "auto";
+    EditSession session(mesh, a.mesh, a.image, img.width, img.height, features_path, initial, opt);
+    std::mutex m;
+
+    httplib::Server svr;
+    svr.set_payload_max_length(64u << 20);
+    svr.Get("/api/state", [&](const httplib::Request&, httplib::Response& res) {
+        guarded(m, res, [&] { return session.state(); });
+    });
+    svr.Put("/api/features", [&](const httplib::Request& req, httplib::Response& res) {
+        guarded(m, res, [&] { return session.set_features(req.body); });
+    });
+    svr.Post("/api/move", [&](const httplib::Request& req, httplib::Response& res) {
+        guarded(m, res, [&] {
+            const nlohmann::json j = nlohmann::json::parse(req.body, nullptr, true, false);
+            const std::vector<double> p = j.at("image").get<std::vector<double>>();
+            if (p.size() != 2) throw BadInput("request", "\"image\" must be [x, y] in pixels");
+            return session.move(j.at("name").get<std::string>(), Vec2(p[0], p[1]));
+        });
+    });
+    svr.Post("/api/save", [&](const httplib::Request&, httplib::Response& res) {
+        guarded(m, res, [&] {
+            session.save();
+            return nlohmann::json{{"saved", features_path}};
+        });
+    });
+    auto file_route = [&](const std::string& name, const char* type, bool glb) {
+        svr.Get("/api/" + name, [&, name, type, glb](const httplib::Request&, httplib::Response& res) {
+            try {
+                std::lock_guard<std::mutex> lock(m);
+                if (!session.map()) throw BadInput("features", "no map yet: give features first");
+                const TexturedMesh tm = session.map()->textured();
+                const std::string image = fs::absolute(session.image_path()).string();
+                const std::string bytes = map_file_bytes(name, [&](const fs::path& dir) {
+                    if (glb) write_glb(tm, (dir / "map.glb").string(), image);
+                    else write_obj(tm, (dir / "map.obj").string(), image);
+                });
+                res.set_content(bytes, type);
+            } catch (const BadInput& e) {
+                reply(res, 422, {{"error", e.what()}, {"exit_code", int(kExitBadInput)}});
+            } catch (const std::exception& e) {
+                reply(res, 500, {{"error", e.what()}, {"exit_code", int(kExitInternal)}});
+            }
+        });
+    };
+    file_route("map.obj", "text/plain", false);
+    file_route("map.mtl", "text/plain", false);
+    file_route("map.glb", "model/gltf-binary", true);
+    svr.Get("/", [](const httplib::Request&, httplib::Response& res) {
+        res.status = 404;
+        res.set_content("ctmap serve: the editor page is not built yet (issue 15); the JSON API is at /api/state, "
+                        "/api/features (PUT), /api/move (POST), /api/save (POST), /api/map.obj, /api/map.mtl, "
+                        "/api/map.glb (README, \"ctmap serve\")\n",
+                        "text/plain");
+    });
+
+    const int port = a.port == 0 ? svr.bind_to_any_port(a.host) : (svr.bind_to_port(a.host, a.port) ? a.port : -1);
+    if (port < 0)
+        throw BadInput(a.host + ":" + std::to_string(a.port), "cannot listen there (in use, or not an address of this machine)");
+    std::cout << "ctmap serve: listening on http://" << a.host << ":" << port << "/ (" << a.mesh << ", " << a.image
+              << ", " << (session.map() ? std::to_string(session.features().features.size()) + " features mapped"
+                                        : std::string("no features yet"))
+              << "); Ctrl-C stops" << std::endl;
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    std::thread watcher([&] {
+        while (!g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        svr.stop();
+    });
+    const bool ok = svr.listen_after_bind();
+    g_stop = true;
+    watcher.join();
+    if (!a.quiet) std::cout << "ctmap serve: stopped" << std::endl;
+    return ok || g_stop ? kExitOk : kExitInternal;
+}
+
+}  // namespace
+
+Command add_serve_command(CLI::App& app) {
+    auto a = std::make_shared<ServeArgs>();
+    auto* sub = app.add_subcommand(
+        "serve", "Edit features live: an HTTP server on localhost whose JSON API re-maps (certified) on every change");
+    sub->add_option("MESH", a->mesh, "the mesh (a topological disc: OFF/OBJ/PLY/STL)")->required();
+    sub->add_option("IMAGE", a->image, "the image (PNG/JPEG)")->required();
+    sub->add_option("FEATURES", a->features,
+                    "features file (.json): read if it exists; /api/save writes it (the only file the server writes)");
+    sub->add_option("--port", a->port, "TCP port (0: any free port, printed)")->capture_default_str()->check(CLI::Range(0, 65535));
+    sub->add_option("--host", a->host, "address to listen on (default: this machine only)")->capture_default_str();
+    sub->add_option("--snap", a->snap, "how far a point feature may be off the surface (mesh units)")
+        ->check(CLI::NonNegativeNumber);
+    sub->add_option("--border", a->border, "auto: place border features where needed; given: the paper's rules")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"auto", "given"}));
+    sub->add_flag("-q,--quiet", a->quiet, "print only the listening line");
+    return {sub, [a] { return run_serve(*a); }};
+}
+
+}  // namespace ctmap::cli

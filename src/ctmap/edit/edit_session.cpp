@@ -1,0 +1,118 @@
+#include "ctmap/edit/edit_session.h"
+
+#include <filesystem>
+#include <utility>
+
+#include "ctmap/errors.h"
+#include "ctmap/io/atomic_file.h"
+#include "ctmap/io/map_report.h"
+
+namespace ctmap {
+
+EditSession::EditSession(TriMesh mesh, std::string mesh_path, std::string image_path, int width, int height,
+                         std::string features_path, std::optional<FeatureSet> initial, EditSessionOptions options)
+    : mesh_(std::move(mesh)),
+      mesh_path_(std::move(mesh_path)),
+      image_path_(std::move(image_path)),
+      features_path_(std::move(features_path)),
+      width_(width),
+      height_(height),
+      options_(std::move(options)) {
+    if (width_ <= 0 || height_ <= 0) throw BadInput(image_path_, "the image has no pixels");
+    features_.path = features_path_;
+    features_.image = image_path_;
+    features_.image_size = std::array<int, 2>{width_, height_};
+    if (initial) {
+        initial->image = image_path_;
+        initial->image_size = std::array<int, 2>{width_, height_};
+        apply(std::move(*initial));
+    }
+}
+
+void EditSession::apply(FeatureSet fs) {
+    fs.path = features_path_;
+    fs.image = image_path_;
+    fs.image_size = std::array<int, 2>{width_, height_};
+    // What `ctmap map` checks after reading, in its order, with its messages.
+    resolve_units(fs, width_, height_);
+    check_features_on_mesh(fs, mesh_, mesh_path_, options_.map.snap);
+    MapResult r = naming_file(features_path_.empty() ? "features" : features_path_,
+                              [&] { return map_texture(mesh_, map_features(fs, width_, height_), options_.map); });
+    features_ = std::move(fs);
+    map_ = std::move(r);
+}
+
+nlohmann::json EditSession::set_features(const std::string& document) {
+    FeatureSet fs = parse_features(document, features_path_.empty() ? "features" : features_path_);
+    apply(std::move(fs));
+    return answer();
+}
+
+nlohmann::json EditSession::move(const std::string& name, const Vec2& image) {
+    FeatureSet fs = features_;
+    bool found = false;
+    for (Feature& f : fs.features)
+        if (f.name == name) {
+            f.image = image;
+            found = true;
+        }
+    if (!found) throw BadInput(features_path_.empty() ? "features" : features_path_, "no feature \"" + name + "\"");
+    if (!image.allFinite())
+        throw BadInput(features_path_.empty() ? "features" : features_path_,
+                       "feature \"" + name + "\": its image point is not finite");
+    fs.units = "pixels";
+    apply(std::move(fs));
+    return answer();
+}
+
+namespace {
+
+template <class T>
+nlohmann::json flat(const std::vector<T>& items) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const T& p : items)
+        for (const auto x : p) out.push_back(x);
+    return out;
+}
+
+}  // namespace
+
+nlohmann::json EditSession::answer() const {
+    if (!map_) return nullptr;
+    MapReportInputs in{mesh_path_, features_path_, image_path_, width_, height_, mesh_.num_vertices(),
+                       mesh_.num_faces()};
+    nlohmann::json j = map_report(*map_, in);
+    j["uv"] = flat(map_->uv);
+    j["vertices"] = flat(map_->cut.mesh.positions);
+    j["faces"] = flat(map_->cut.mesh.faces);
+    return j;
+}
+
+nlohmann::json EditSession::state() const {
+    nlohmann::json j;
+    j["mesh"] = {{"path", mesh_path_}, {"vertices", flat(mesh_.positions)}, {"faces", flat(mesh_.faces)}};
+    j["image"] = {{"path", image_path_}, {"width", width_}, {"height", height_}};
+    j["features"] = nlohmann::json::parse(features_document());
+    j["map"] = answer();
+    return j;
+}
+
+std::string EditSession::features_document() const {
+    // The image as the saved file will resolve it: relative to the features file's folder.
+    FeatureSet fs = features_;
+    if (!features_path_.empty() && !fs.image.empty()) {
+        namespace fsys = std::filesystem;
+        std::error_code ec;
+        const fsys::path folder = fsys::absolute(fsys::path(features_path_), ec).parent_path();
+        const fsys::path rel = fsys::relative(fsys::absolute(fs.image, ec), folder, ec);
+        if (!ec && !rel.empty()) fs.image = rel.string();
+    }
+    return features_to_json(fs);
+}
+
+void EditSession::save() const {
+    if (features_path_.empty()) throw BadInput("features", "no features file to save to: give one to `ctmap serve`");
+    write_text_file(features_path_, features_document());
+}
+
+}  // namespace ctmap

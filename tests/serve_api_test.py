@@ -1,0 +1,158 @@
+"""Issue 15, must-show 2: `ctmap serve`'s JSON API under a sequence of random moves on lion-head /
+chelsea, some of which make the layout invalid. Every answer must be a map that this script checks
+on its own (every feature's UV where its pixel says, no UV triangle with area <= 0 in floating
+point, the certificate valid) or a named error that leaves the session unchanged; maps are
+compared with a full `ctmap map` of the same features (symmetric Dirichlet within 5%); the server
+must be alive at the end, have written nothing until asked to save, and load what it saved.
+
+Usage: serve_api_test.py CTMAP_BIN SOURCE_DIR WORK_DIR
+CTMAP_SERVE_MOVES (default 30; the issue's run: 200), CTMAP_SERVE_SEED (default 1)."""
+import json
+import os
+import random
+import shutil
+import signal
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
+
+import numpy as np
+
+ctmap, source, work = sys.argv[1:4]
+for data in (os.environ.get("CTMAP_DATA"), os.path.join(source, "data"), os.path.join(source, "..", "shared", "data"),
+             os.path.join(source, ".cache", "data")):
+    if data and os.path.isfile(os.path.join(data, "meshes", "lion-head.off")):
+        break
+else:
+    sys.exit("no lion-head.off (scripts/fetch_data.sh)")
+features_file = os.path.join(source, "data", "features", "lion-head_chelsea.json")
+moves = int(os.environ.get("CTMAP_SERVE_MOVES", "30"))
+rng = random.Random(int(os.environ.get("CTMAP_SERVE_SEED", "1")))
+mesh = os.path.join(data, "meshes", "lion-head.off")
+image = os.path.join(data, "images", "chelsea.png")
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(os.path.join(work, "session"))
+saved = os.path.join(work, "session", "features.json")
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL:", what, flush=True)
+
+
+def start(features_arg):
+    p = subprocess.Popen([ctmap, "serve", mesh, image, features_arg, "--port", "0"], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    line = p.stdout.readline()
+    if "listening on http://127.0.0.1:" not in line:
+        sys.exit(f"the server did not start: {line!r} {p.stderr.read()!r}")
+    return p, line.split("http://")[1].split("/")[0]
+
+
+def call(addr, method, path, body=None):
+    req = urllib.request.Request(f"http://{addr}{path}", data=None if body is None else body.encode(), method=method)
+    try:
+        with urllib.request.urlopen(req, timeout=600) as r:
+            return r.status, r.read()
+    except urllib.error.HTTPError as e:
+        return e.code, e.read()
+
+
+def verify_map(m, feats, width, height, label):
+    """Checks a map answer against the features it was asked for, independently of the certificate."""
+    uv = np.array(m["uv"]).reshape(-1, 2)
+    faces = np.array(m["faces"]).reshape(-1, 3)
+    check(m["certificate"]["valid"] and m["certificate"]["flipped"] == 0, f"{label}: certificate not valid")
+    for f in feats:
+        want = np.array([f["image"][0] / width, 1 - f["image"][1] / height])
+        err = np.abs(uv[f["vertex"]] - want).max()
+        check(err <= 1e-12, f"{label}: feature {f['name']} is {err:.3g} off its UV")
+    a, b, c = uv[faces[:, 0]], uv[faces[:, 1]], uv[faces[:, 2]]
+    area = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    check((area > 0).all(), f"{label}: {(area <= 0).sum()} UV triangles with area <= 0")
+
+
+def full_map_sd(feats, width, height, k):
+    """The symmetric Dirichlet of `ctmap map` on the same features, through files."""
+    path = os.path.join(work, f"full_{k}.json")
+    json.dump({"image_size": [width, height], "units": "pixels", "features": feats}, open(path, "w"))
+    report = os.path.join(work, f"full_{k}_report.json")
+    subprocess.run([ctmap, "map", mesh, path, "--image", image, "-o", os.path.join(work, f"full_{k}.obj"),
+                    "--report", report, "-q"], check=True)
+    return json.load(open(report))["certificate"]["symmetric_dirichlet"]
+
+
+server, addr = start(saved)
+try:
+    status, body = call(addr, "GET", "/api/state")
+    state = json.loads(body)
+    W, H = state["image"]["width"], state["image"]["height"]
+    check(status == 200 and state["map"] is None and state["features"]["features"] == [], "a new session is empty")
+    status, body = call(addr, "PUT", "/api/features", open(features_file).read())
+    check(status == 200, f"PUT /api/features: {status} {body[:200]!r}")
+    feats = json.loads(call(addr, "GET", "/api/state")[1])["features"]["features"]
+    verify_map(json.loads(body), feats, W, H, "initial")
+    names = [f["name"] for f in feats]
+    mapped = refused = 0
+    t0 = time.time()
+    for k in range(moves):
+        name = rng.choice(names)
+        old = next(f for f in feats if f["name"] == name)["image"]
+        if rng.random() < 0.15:  # a far jump: often invalid (crossing, outside the border, outside the image)
+            new = [rng.uniform(-40, W + 40), rng.uniform(-40, H + 40)]
+        else:
+            new = [min(max(old[0] + rng.gauss(0, 25), 0), W), min(max(old[1] + rng.gauss(0, 25), 0), H)]
+        status, body = call(addr, "POST", "/api/move", json.dumps({"name": name, "image": new}))
+        answer = json.loads(body)
+        after = json.loads(call(addr, "GET", "/api/state")[1])["features"]["features"]
+        if status == 200:
+            mapped += 1
+            feats = after
+            check(next(f for f in feats if f["name"] == name)["image"] == new, f"move {k}: the feature did not move")
+            verify_map(answer, feats, W, H, f"move {k}")
+            if mapped % 10 == 1 or k == moves - 1:
+                full = full_map_sd(feats, W, H, k)
+                sd = answer["certificate"]["symmetric_dirichlet"]
+                check(abs(sd - full) <= 0.05 * full, f"move {k}: symmetric Dirichlet {sd} vs {full} of ctmap map")
+                print(f"move {k}: symmetric Dirichlet {sd:.4f}, ctmap map {full:.4f}", flush=True)
+        else:
+            refused += 1
+            check(status == 422 and answer.get("exit_code") == 2, f"move {k}: status {status} {answer}")
+            msg = answer.get("error", "")
+            check(saved in msg or any(n in msg for n in names), f"move {k}: the error names neither the file nor a feature: {msg}")
+            check(after == feats, f"move {k}: a refused move changed the session")
+            print(f"move {k}: refused: {msg[:150]}", flush=True)
+    print(f"{moves} moves: {mapped} mapped (each checked), {refused} refused with a named error, "
+          f"{time.time() - t0:.0f} s", flush=True)
+    check(mapped > 0 and refused > 0, "the sequence should hold both valid and invalid layouts")
+    check(not os.path.exists(saved), "the server wrote the features file before /api/save")
+    check(os.listdir(os.path.join(work, "session")) == [], "the server wrote into its folder unasked")
+    for path in ("/api/map.obj", "/api/map.mtl", "/api/map.glb"):
+        status, body = call(addr, "GET", path)
+        check(status == 200 and len(body) > 100, f"GET {path}: {status}")
+    status, body = call(addr, "POST", "/api/save")
+    check(status == 200 and os.path.exists(saved), f"POST /api/save: {status} {body!r}")
+    check(sorted(os.listdir(os.path.join(work, "session"))) == ["features.json"], "save wrote more than the features file")
+    status, _ = call(addr, "GET", "/api/state")
+    check(status == 200 and server.poll() is None, "the server is not alive at the end")
+finally:
+    server.send_signal(signal.SIGTERM)
+    check(server.wait(timeout=30) == 0, "the server did not stop cleanly on SIGTERM")
+
+# A new server on the saved file finds the same features and maps them.
+server, addr = start(saved)
+try:
+    state = json.loads(call(addr, "GET", "/api/state")[1])
+    check(state["features"]["features"] == feats, "the saved features did not come back")
+    check(state["map"] is not None and state["map"]["certificate"]["valid"], "the saved features were not mapped")
+finally:
+    server.send_signal(signal.SIGTERM)
+    server.wait(timeout=30)
+
+if failures:
+    sys.exit(f"{len(failures)} failure(s); first: {failures[0]}")
+print("serve API: ok")
