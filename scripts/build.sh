@@ -12,4 +12,8 @@ if [ ! -f "$dir/CMakeCache.txt" ]; then
 else
   cmake -S . -B "$dir" "$@" >/dev/null
 fi
+# three.js for the page of `ctmap serve` (web/), exactly as web/package-lock.json pins it.
+if command -v npm >/dev/null && [ ! -f web/node_modules/three/build/three.module.js ]; then
+  (cd web && npm ci --no-audit --no-fund >/dev/null)
+fi
 cmake --build "$dir" -j2

@@ -35,7 +35,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct ServeArgs {
-    std::string mesh, image, features, host = "127.0.0.1";
+    std::string mesh, image, features, web, host = "127.0.0.1";
+    bool open = false;
     int port = 8080;
     double snap = -1;
     std::string border = "auto";
@@ -90,7 +91,27 @@ std::string map_file_bytes(const std::string& name, W&& write) {
     return bytes;
 }
 
+/// The editor page's folder (index.html, editor.js, three/ from npm): --web, else `web` beside the
+/// program (the build tree), else `../share/ctmap/web` (an installed program). Empty if none.
+std::string find_web_root(const std::string& given) {
+    auto holds_page = [](const fs::path& d) { return fs::is_regular_file(d / "index.html") && fs::is_regular_file(d / "editor.js"); };
+    if (!given.empty()) {
+        if (!holds_page(given)) throw BadInput(given, "--web: no index.html and editor.js in this folder");
+        return given;
+    }
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) return "";
+    for (const fs::path& d : {exe.parent_path() / "web", exe.parent_path().parent_path() / "share" / "ctmap" / "web"})
+        if (holds_page(d)) return d.string();
+    return "";
+}
+
 int run_serve(const ServeArgs& a) {
+    if (a.host.empty() || a.host.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789.:-") !=
+                              std::string::npos)
+        throw BadInput(a.host, "--host must be a host name or an IP address");
+    const std::string web = find_web_root(a.web);
     const TriMesh mesh = read_mesh(a.mesh);
     require_disc(compute_topology(mesh), a.mesh);
     const Image img = read_image(a.image);
@@ -160,13 +181,24 @@ int run_serve(const ServeArgs& a) {
     file_route("map.obj", "text/plain", false);
     file_route("map.mtl", "text/plain", false);
     file_route("map.glb", "model/gltf-binary", true);
-    svr.Get("/", [](const httplib::Request&, httplib::Response& res) {
-        res.status = 404;
-        res.set_content("ctmap serve: the editor page is not built yet (issue 15); the JSON API is at /api/state, "
-                        "/api/features (PUT), /api/move (POST), /api/save (POST), /api/map.obj, /api/map.mtl, "
-                        "/api/map.glb (README, \"ctmap serve\")\n",
-                        "text/plain");
-    });
+    // The image the features are placed on, as the page shows it.
+    const std::string image_bytes = read_input_file(a.image, "image file");
+    const std::string image_type = image_bytes.rfind("\x89PNG", 0) == 0 ? "image/png" : "image/jpeg";
+    svr.Get("/api/image", [&](const httplib::Request&, httplib::Response& res) { res.set_content(image_bytes, image_type); });
+    // The page: static files of the web folder only (httplib refuses paths with "..").
+    if (!web.empty()) {
+        svr.set_mount_point("/", web);
+        if (!fs::is_regular_file(fs::path(web) / "three" / "build" / "three.module.js"))
+            std::cerr << "ctmap serve: warning: " << web << "/three has no three.js: the page cannot start "
+                      << "(npm ci in web/, scripts/build.sh does it)" << std::endl;
+    } else {
+        svr.Get("/", [](const httplib::Request&, httplib::Response& res) {
+            res.status = 404;
+            res.set_content("ctmap serve: the editor page's folder was not found (give --web DIR); the JSON API is "
+                            "at /api/state (README, \"ctmap serve\")\n",
+                            "text/plain");
+        });
+    }
 
     const int port = a.port == 0 ? svr.bind_to_any_port(a.host) : (svr.bind_to_port(a.host, a.port) ? a.port : -1);
     if (port < 0)
@@ -175,6 +207,10 @@ int run_serve(const ServeArgs& a) {
               << ", " << (session.map() ? std::to_string(session.features().features.size()) + " features mapped"
                                         : std::string("no features yet"))
               << "); Ctrl-C stops" << std::endl;
+    if (a.open) {  // the desktop's browser, if there is one; the URL is ours (host and port only)
+        const std::string cmd = "xdg-open 'http://" + a.host + ":" + std::to_string(port) + "/' >/dev/null 2>&1 &";
+        if (std::system(cmd.c_str()) != 0) std::cerr << "ctmap serve: could not start a browser (xdg-open)" << std::endl;
+    }
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     std::thread watcher([&] {
@@ -205,6 +241,8 @@ Command add_serve_command(CLI::App& app) {
     sub->add_option("--border", a->border, "auto: place border features where needed; given: the paper's rules")
         ->capture_default_str()
         ->check(CLI::IsMember({"auto", "given"}));
+    sub->add_option("--web", a->web, "folder of the editor page (default: web/ beside the program)");
+    sub->add_flag("--open", a->open, "open the page in the desktop's browser (xdg-open)");
     sub->add_flag("-q,--quiet", a->quiet, "print only the listening line");
     return {sub, [a] { return run_serve(*a); }};
 }
