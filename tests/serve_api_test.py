@@ -2,7 +2,7 @@
 chelsea, some of which make the layout invalid. Every answer must be a map that this script checks
 on its own (every feature's UV where its pixel says, no UV triangle with area <= 0 in floating
 point, the certificate valid) or a named error that leaves the session unchanged; maps are
-compared with a full `ctmap map` of the same features (symmetric Dirichlet within 5%); the server
+compared with a full `ctmap map` of the same features (symmetric Dirichlet at most 5% above it); the server
 must be alive at the end, have written nothing until asked to save, and load what it saved.
 
 Usage: serve_api_test.py CTMAP_BIN SOURCE_DIR WORK_DIR
@@ -98,6 +98,9 @@ try:
     verify_map(json.loads(body), feats, W, H, "initial")
     names = [f["name"] for f in feats]
     mapped = refused = 0
+    updates = {"full": 0, "incremental": 0}
+    times = {"full": [], "incremental": []}
+    because = {}
     t0 = time.time()
     for k in range(moves):
         name = rng.choice(names)
@@ -111,14 +114,20 @@ try:
         after = json.loads(call(addr, "GET", "/api/state")[1])["features"]["features"]
         if status == 200:
             mapped += 1
+            updates[answer["update"]] += 1
+            times[answer["update"]].append(answer["timings_ms"]["total"])
+            if answer.get("full_because"):
+                because[answer["full_because"]] = because.get(answer["full_because"], 0) + 1
             feats = after
             check(next(f for f in feats if f["name"] == name)["image"] == new, f"move {k}: the feature did not move")
             verify_map(answer, feats, W, H, f"move {k}")
             if mapped % 10 == 1 or k == moves - 1:
                 full = full_map_sd(feats, W, H, k)
                 sd = answer["certificate"]["symmetric_dirichlet"]
-                check(abs(sd - full) <= 0.05 * full, f"move {k}: symmetric Dirichlet {sd} vs {full} of ctmap map")
-                print(f"move {k}: symmetric Dirichlet {sd:.4f}, ctmap map {full:.4f}", flush=True)
+                # At most 5% above a full map (a full map can stop higher, at the optimiser's border
+                # contacts: issue 11; a continued map staying lower is no fault).
+                check(sd <= 1.05 * full, f"move {k}: symmetric Dirichlet {sd} vs {full} of ctmap map")
+                print(f"move {k} ({answer['update']}): symmetric Dirichlet {sd:.4f}, ctmap map {full:.4f}", flush=True)
         else:
             refused += 1
             check(status == 422 and answer.get("exit_code") == 2, f"move {k}: status {status} {answer}")
@@ -128,6 +137,12 @@ try:
             print(f"move {k}: refused: {msg[:150]}", flush=True)
     print(f"{moves} moves: {mapped} mapped (each checked), {refused} refused with a named error, "
           f"{time.time() - t0:.0f} s", flush=True)
+    for kind in ("incremental", "full"):
+        if times[kind]:
+            print(f"  {updates[kind]} {kind}: median {np.median(times[kind]):.0f} ms, "
+                  f"95th percentile {np.percentile(times[kind], 95):.0f} ms (server time per move)", flush=True)
+    for reason, n in because.items():
+        print(f"  mapped in full because {reason}: {n}", flush=True)
     check(mapped > 0 and refused > 0, "the sequence should hold both valid and invalid layouts")
     check(not os.path.exists(saved), "the server wrote the features file before /api/save")
     check(os.listdir(os.path.join(work, "session")) == [], "the server wrote into its folder unasked")

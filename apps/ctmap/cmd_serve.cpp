@@ -37,6 +37,7 @@ namespace fs = std::filesystem;
 struct ServeArgs {
     std::string mesh, image, features, web, host = "127.0.0.1";
     bool open = false;
+    bool full = false;  ///< --full: every move runs the whole pipeline
     int port = 8080;
     double snap = -1;
     std::string border = "auto";
@@ -134,6 +135,7 @@ int run_serve(const ServeArgs& a) {
     EditSessionOptions opt;
     opt.map.snap = a.snap;
     opt.map.auto_border = a.border == "auto";
+    opt.incremental = !a.full;
     EditSession session(mesh, a.mesh, a.image, img.width, img.height, features_path, initial, opt);
     std::mutex m;
 
@@ -242,6 +244,7 @@ Command add_serve_command(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::IsMember({"auto", "given"}));
     sub->add_option("--web", a->web, "folder of the editor page (default: web/ beside the program)");
+    sub->add_flag("--full", a->full, "every move runs the whole pipeline (default: a move starts from the last map when it can)");
     sub->add_flag("--open", a->open, "open the page in the desktop's browser (xdg-open)");
     sub->add_flag("-q,--quiet", a->quiet, "print only the listening line");
     return {sub, [a] { return run_serve(*a); }};

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "ctmap/edit/incremental_remap.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/io/map_report.h"
@@ -40,9 +41,11 @@ void EditSession::apply(FeatureSet fs) {
                               [&] { return map_texture(mesh_, map_features(fs, width_, height_), options_.map); });
     features_ = std::move(fs);
     map_ = std::move(r);
+    last_update_ = "full";
 }
 
 nlohmann::json EditSession::set_features(const std::string& document) {
+    last_fallback_.clear();
     FeatureSet fs = parse_features(document, features_path_.empty() ? "features" : features_path_);
     apply(std::move(fs));
     return answer();
@@ -61,6 +64,28 @@ nlohmann::json EditSession::move(const std::string& name, const Vec2& image) {
         throw BadInput(features_path_.empty() ? "features" : features_path_,
                        "feature \"" + name + "\": its image point is not finite");
     fs.units = "pixels";
+    const std::string file = features_path_.empty() ? "features" : features_path_;
+    last_fallback_.clear();
+    if (map_ && options_.incremental) {
+        // What `ctmap map` would refuse is refused with its message; a valid layout then starts
+        // from the last map (edit/incremental_remap.h), or is mapped in full if it cannot.
+        FeatureSet checked = fs;
+        resolve_units(checked, width_, height_);
+        naming_file(file, [&] {
+            return check_feature_layout(mesh_, map_features(checked, width_, height_), options_.map.snap,
+                                        options_.map.auto_border);
+        });
+        int index = 0;
+        while (checked.features[index].name != name) ++index;
+        std::optional<MapResult> r = remap_moved_feature(*map_, index, image_to_uv(checked.features[index].image, width_, height_),
+                                                         options_.map, &last_fallback_);
+        if (r) {
+            features_ = std::move(checked);
+            map_ = std::move(r);
+            last_update_ = "incremental";
+            return answer();
+        }
+    }
     apply(std::move(fs));
     return answer();
 }
@@ -85,6 +110,8 @@ nlohmann::json EditSession::answer() const {
     j["uv"] = flat(map_->uv);
     j["vertices"] = flat(map_->cut.mesh.positions);
     j["faces"] = flat(map_->cut.mesh.faces);
+    j["update"] = last_update_;  // "full": the whole pipeline; "incremental": from the previous map
+    if (last_update_ == "full" && !last_fallback_.empty()) j["full_because"] = last_fallback_;
     return j;
 }
 

@@ -17,6 +17,9 @@ namespace ctmap {
 /// What an editing session maps with (the options of `ctmap map`).
 struct EditSessionOptions {
     MapOptions map;
+    /// A move starts from the last map (edit/incremental_remap.h) when it can; off: every change
+    /// runs the whole pipeline.
+    bool incremental = true;
 };
 
 class EditSession {
@@ -38,13 +41,17 @@ public:
     ///         features file) if the document or the layout is invalid; the session is unchanged.
     nlohmann::json set_features(const std::string& document);
 
-    /// Moves feature `name`'s image point to `image` (pixels) and maps.
+    /// Moves feature `name`'s image point to `image` (pixels) and maps: from the last map when it
+    /// can (EditSessionOptions::incremental), else in full; the layout is checked as `ctmap map`
+    /// checks it either way.
     /// \throw BadInput for an unknown name, a point outside the image or an invalid layout; the
     ///        session is unchanged.
     nlohmann::json move(const std::string& name, const Vec2& image);
 
     /// The last map: its report (as `ctmap map --report` writes it) with "uv" (per vertex of the
-    /// cut mesh, flat u v), "vertices" (flat xyz) and "faces" (flat) added; null before any map.
+    /// cut mesh, flat u v), "vertices" (flat xyz), "faces" (flat) and "update" ("full" or
+    /// "incremental"; with "full_because" when a move could not start from the last map) added;
+    /// null before any map.
     nlohmann::json answer() const;
 
     /// The current features as a features document (DESIGN §4, pixels).
@@ -69,6 +76,8 @@ private:
     EditSessionOptions options_;
     FeatureSet features_;
     std::optional<MapResult> map_;
+    std::string last_update_;    ///< how the last map was made: "full" or "incremental"
+    std::string last_fallback_;  ///< why the last move was mapped in full (empty: it was not a move)
 };
 
 }  // namespace ctmap

@@ -1,0 +1,91 @@
+// Issue 15: the incremental re-map of `ctmap serve` (edit/incremental_remap.h, refine/bump_move.h).
+// A feature moved a few pixels, as a drag moves it, starts from the last map: the answer must hold
+// every feature exactly, be certified, and have a symmetric Dirichlet at most 5% above a full map
+// of the same features (the issue's bar); the bump keeps the other features bitwise.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "ctmap/certify/certificate.h"
+#include "ctmap/edit/incremental_remap.h"
+#include "ctmap/io/features.h"
+#include "ctmap/io/read_mesh.h"
+#include "ctmap/map_texture.h"
+#include "ctmap/refine/bump_move.h"
+#include "test_support.h"
+
+namespace ctmap::test {
+namespace {
+
+TEST(BumpMove, MovesTheVertexExactlyAndKeepsTheOtherFixedOnes) {
+    std::vector<Vec2> uv;
+    for (int i = 0; i <= 20; ++i)
+        for (int j = 0; j <= 20; ++j) uv.emplace_back(i / 20.0, j / 20.0);
+    const int moved = 10 * 21 + 10, other = 14 * 21 + 10;
+    const std::vector<Vec2> before = uv;
+    ASSERT_TRUE(bump_move(uv, moved, Vec2(0.53, 0.51), {moved, other}, Vec2(0, 0), Vec2(1, 1)));
+    EXPECT_EQ(uv[moved], Vec2(0.53, 0.51));
+    EXPECT_EQ(uv[other], before[other]);
+    int changed = 0;
+    for (std::size_t v = 0; v < uv.size(); ++v) {
+        // Only within the reach (0.2, the other fixed vertex) of the start.
+        if ((before[v] - before[moved]).norm() >= 0.2) EXPECT_EQ(uv[v], before[v]) << v;
+        changed += uv[v] != before[v];
+    }
+    EXPECT_GT(changed, 20);
+    // A move longer than 8 bumps allow is refused, and leaves the map as it was.
+    std::vector<Vec2> copy = uv;
+    EXPECT_FALSE(bump_move(copy, moved, Vec2(0.53 + 0.6, 0.51), {moved, other}, Vec2(-9, -9), Vec2(9, 9)));
+    EXPECT_EQ(copy, uv);
+    // As is one that would push a point out of the box.
+    EXPECT_FALSE(bump_move(copy, moved, Vec2(0.53, 0.51 + 0.3), {moved}, Vec2(0, 0), Vec2(1, 1)));
+    EXPECT_EQ(copy, uv);
+}
+
+TEST(IncrementalRemap, SmallMovesOfEveryInteriorFeatureStartFromTheLastMap) {
+    const TriMesh mesh = read_mesh(data("meshes/lion-head.off"));
+    FeatureSet fs = read_features(data("features/lion-head_chelsea.json"));
+    int w = 0, h = 0;
+    resolve_feature_image(fs, "", w, h);
+    const MapOptions options;
+    const MapResult first = map_texture(mesh, map_features(fs, w, h), options);
+    int incremental = 0, tried = 0;
+    for (std::size_t i = 0; i < fs.features.size(); ++i) {
+        if (fs.features[i].name.rfind("neck", 0) == 0) continue;  // the border features
+        for (const Vec2 step : {Vec2(4, 0), Vec2(0, -4)}) {
+            ++tried;
+            FeatureSet moved = fs;
+            moved.features[i].image += step;
+            std::string why;
+            const std::optional<MapResult> r =
+                remap_moved_feature(first, int(i), image_to_uv(moved.features[i].image, w, h), options, &why);
+            if (!r) {
+                std::printf("  %s moved by (%g, %g): mapped in full (%s)\n", fs.features[i].name.c_str(), step.x(),
+                            step.y(), why.c_str());
+                continue;
+            }
+            ++incremental;
+            const std::vector<MapFeature> mf = map_features(moved, w, h);
+            // The certificate again, from the features as given (not from the result's own copy).
+            std::vector<Vec2> want;
+            for (const MapFeature& f : mf) want.push_back(f.uv);
+            const Certificate c = certify(r->textured(), r->cut.feature_vertex, want);
+            EXPECT_TRUE(c.valid) << fs.features[i].name;
+            EXPECT_EQ(c.feature_max_error, 0) << fs.features[i].name;
+            const double full = map_texture(mesh, mf, options).certificate.distortion.symmetric_dirichlet;
+            const double sd = c.distortion.symmetric_dirichlet;
+            std::printf("  %s moved by (%g, %g): %d iterations, %.0f ms, symmetric Dirichlet %.4f (full map %.4f)\n",
+                        fs.features[i].name.c_str(), step.x(), step.y(), r->isometric_stats.iterations,
+                        r->timings_ms.total, sd, full);
+            // Not above a full map's by more than 5% (a full map can stop higher: the optimiser's
+            // border contacts, issue 11; the continued map then stays lower, which is no fault).
+            EXPECT_LE(sd, 1.05 * full) << fs.features[i].name;
+        }
+    }
+    // A drag's small steps should almost always start from the last map.
+    EXPECT_GE(incremental, tried - 2) << incremental << " of " << tried;
+}
+
+}  // namespace
+}  // namespace ctmap::test
