@@ -141,6 +141,12 @@ int run_serve(const ServeArgs& a) {
 
     httplib::Server svr;
     svr.set_payload_max_length(64u << 20);
+    // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second server on a port
+    // in use starts too and the two share the requests.
+    svr.set_socket_options([](socket_t sock) {
+        int yes = 1;
+        setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+    });
     svr.Get("/api/state", [&](const httplib::Request&, httplib::Response& res) {
         guarded(m, res, [&] { return session.state(); });
     });
