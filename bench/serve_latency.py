@@ -28,8 +28,11 @@ END = "<!-- serve:end -->"
 MESHES = [("lion-head", "chelsea"), ("mannequin-devil", "coffee")]
 
 
-def call(addr, method, path, body=None):
-    req = urllib.request.Request(f"http://{addr}{path}", data=None if body is None else body.encode(), method=method)
+def call(addr, method, path, body=None, headers=None):
+    if headers is None:
+        headers = {} if method == "GET" else {"Content-Type": "application/json"}
+    data = None if method == "GET" else (body or "{}").encode()
+    req = urllib.request.Request(f"http://{addr}{path}", data=data, method=method, headers=headers)
     try:
         with urllib.request.urlopen(req, timeout=600) as r:
             return r.status, json.loads(r.read())

@@ -5,15 +5,16 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 dir=${1:-build}
 shift || true
+# three.js for the page of `ctmap serve` (web/), exactly as web/package-lock.json pins it.
+if command -v npm >/dev/null && [ ! -f web/node_modules/three/build/three.module.js ]; then
+  (cd web && npm ci --no-audit --no-fund >/dev/null)
+fi
+# (before configuring: the install rules copy it when it is there)
 gen=()
 command -v ninja >/dev/null && gen=(-G Ninja)
 if [ ! -f "$dir/CMakeCache.txt" ]; then
   cmake -S . -B "$dir" "${gen[@]}" "$@" >/dev/null
 else
   cmake -S . -B "$dir" "$@" >/dev/null
-fi
-# three.js for the page of `ctmap serve` (web/), exactly as web/package-lock.json pins it.
-if command -v npm >/dev/null && [ ! -f web/node_modules/three/build/three.module.js ]; then
-  (cd web && npm ci --no-audit --no-fund >/dev/null)
 fi
 cmake --build "$dir" -j2

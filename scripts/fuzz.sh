@@ -10,6 +10,10 @@ trap 'rc=$?; msg="fuzz: stopped at scripts/fuzz.sh line $LINENO (exit $rc): $BAS
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
+if ! [[ $seconds =~ ^[0-9]+$ ]]; then
+  echo "fuzz: SECONDS_PER_TARGET must be a whole number, not '$seconds'"; echo "fuzz: bad SECONDS_PER_TARGET" >&2
+  exit 2
+fi
 all_targets=(fuzz_off fuzz_obj fuzz_ply fuzz_stl fuzz_textured_obj fuzz_features fuzz_pairs fuzz_image fuzz_glb fuzz_gltf)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
@@ -18,7 +22,8 @@ dir=build-fuzz
 # Debian's clang-14 (scripts/install_deps.sh: clang-14, libclang-rt-14-dev, llvm-14).
 cxx=${CTMAP_FUZZ_CXX:-$(command -v clang++ || command -v clang++-14 || true)}
 if [ -z "$cxx" ]; then
-  echo "fuzz: no clang++ (install clang-14 and libclang-rt-14-dev: scripts/install_deps.sh)" >&2
+  echo "fuzz: no clang++ (install clang-14 and libclang-rt-14-dev: scripts/install_deps.sh)"
+  echo "fuzz: no clang++" >&2
   exit 1
 fi
 symbolizer=$(command -v llvm-symbolizer-14 || command -v llvm-symbolizer || true)
@@ -32,9 +37,13 @@ if [ ! -f "$dir/CMakeCache.txt" ]; then
   first+=(-DCMAKE_CXX_COMPILER="$cxx")
 fi
 # -O1 without NDEBUG: assertions (Eigen's, CGAL's, the library's) stay on while fuzzing.
-cmake -S . -B "$dir" ${first[@]+"${first[@]}"} -DCTMAP_FUZZ=ON \
+mkdir -p "$dir"
+if ! cmake -S . -B "$dir" ${first[@]+"${first[@]}"} -DCTMAP_FUZZ=ON \
   -DCTMAP_BUILD_TESTS=OFF -DCTMAP_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" >/dev/null
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" >"$dir/configure.log" 2>&1; then
+  echo "fuzz: configuring $dir failed:"; tail -20 "$dir/configure.log"
+  exit 1
+fi
 cmake --build "$dir" --target fuzz_all -j2
 echo "fuzz: build took $((SECONDS - start)) s"
 
@@ -77,7 +86,7 @@ for t in "${targets[@]}"; do
   rc=0
   # First the inputs that once failed (fuzz/regressions/<target>): each must now pass.
   if [ -d "fuzz/regressions/$t" ]; then
-    if ! TMPDIR="$PWD/$work/tmp" timeout --signal=KILL 120 "$exe" -timeout=5 -rss_limit_mb=2048 \
+    if ! TMPDIR="$PWD/$work/tmp" timeout --signal=KILL 120 "$exe" -timeout=5 -rss_limit_mb=2048 -artifact_prefix="$work/regression-" \
         fuzz/regressions/"$t"/* >"$work/regressions.txt" 2>&1; then
       echo "fuzz: $t fails on a regression input (fuzz/regressions/$t; $work/regressions.txt)"
       { grep -E '==ctmap-fuzz==|ERROR:|runtime error|Running:' "$work/regressions.txt" || true; } | tail -6 | sed 's/^/    /'
@@ -112,7 +121,7 @@ for t in "${targets[@]}"; do
     elif grep -qE 'ERROR: libFuzzer: (out-of-memory|malloc limit)' "$log"; then result=out-of-memory
     elif grep -q 'ERROR: LeakSanitizer' "$log"; then result=leak
     elif grep -q 'ERROR: AddressSanitizer' "$log"; then
-      result="asan:$(grep -oE 'ERROR: AddressSanitizer: [a-z-]+' "$log" | head -1 | awk '{print $3}')"
+      result="asan:$({ grep -m1 -oE 'ERROR: AddressSanitizer: [a-z-]+' "$log" || true; } | awk '{print $3}')"
     elif grep -q 'runtime error:' "$log"; then result=ubsan
     elif grep -q '==ctmap-fuzz==' "$log"; then result=contract
     elif [ "$rc" -eq 137 ]; then result=hung

@@ -10,7 +10,8 @@ rm -rf "$work"
 mkdir -p "$work"
 /usr/bin/python3 -m venv --system-site-packages "$work/venv"
 py=$work/venv/bin/python
-# pip builds in the source tree; its scratch files go to the work folder.
+# pip builds in the source tree (setup.cfg puts setuptools' scratch in build/setuptools; the
+# egg-info beside setup.py is ignored by git).
 CTMAP_CMAKE_BUILD_DIR=$build PIP_NO_CACHE_DIR=1 "$py" -m pip install --no-build-isolation --no-index \
   --quiet "$src" > "$work/pip.log" 2>&1 || { cat "$work/pip.log"; exit 1; }
 "$py" -m pip show ctmap | grep -E '^(Name|Version|Location):'

@@ -53,8 +53,11 @@ def start(features_arg):
     return p, line.split("http://")[1].split("/")[0]
 
 
-def call(addr, method, path, body=None):
-    req = urllib.request.Request(f"http://{addr}{path}", data=None if body is None else body.encode(), method=method)
+def call(addr, method, path, body=None, headers=None):
+    if headers is None:
+        headers = {} if method == "GET" else {"Content-Type": "application/json"}
+    data = None if method == "GET" else (body or "{}").encode()
+    req = urllib.request.Request(f"http://{addr}{path}", data=data, method=method, headers=headers)
     try:
         with urllib.request.urlopen(req, timeout=600) as r:
             return r.status, r.read()
@@ -109,9 +112,11 @@ try:
             new = [rng.uniform(-40, W + 40), rng.uniform(-40, H + 40)]
         else:
             new = [min(max(old[0] + rng.gauss(0, 25), 0), W), min(max(old[1] + rng.gauss(0, 25), 0), H)]
+        before_state = json.loads(call(addr, "GET", "/api/state")[1])
         status, body = call(addr, "POST", "/api/move", json.dumps({"name": name, "image": new}))
         answer = json.loads(body)
-        after = json.loads(call(addr, "GET", "/api/state")[1])["features"]["features"]
+        after_state = json.loads(call(addr, "GET", "/api/state")[1])
+        after = after_state["features"]["features"]
         if status == 200:
             mapped += 1
             updates[answer["update"]] += 1
@@ -133,7 +138,7 @@ try:
             check(status == 422 and answer.get("exit_code") == 2, f"move {k}: status {status} {answer}")
             msg = answer.get("error", "")
             check(saved in msg or any(n in msg for n in names), f"move {k}: the error names neither the file nor a feature: {msg}")
-            check(after == feats, f"move {k}: a refused move changed the session")
+            check(after_state == before_state, f"move {k}: a refused move changed the session (features, map or report)")
             print(f"move {k}: refused: {msg[:150]}", flush=True)
     print(f"{moves} moves: {mapped} mapped (each checked), {refused} refused with a named error, "
           f"{time.time() - t0:.0f} s", flush=True)
@@ -144,11 +149,25 @@ try:
     for reason, n in because.items():
         print(f"  mapped in full because {reason}: {n}", flush=True)
     check(mapped > 0 and refused > 0, "the sequence should hold both valid and invalid layouts")
+    # Only this server's own pages may use it: another Host (DNS rebinding) and a change sent as
+    # text/plain (what a page elsewhere can send without asking) are refused, and change nothing.
+    status, _ = call(addr, "GET", "/api/state", headers={"Host": "evil.example:80"})
+    check(status == 403, f"a request for another Host answered {status}")
+    status, _ = call(addr, "POST", "/api/save", headers={"Content-Type": "text/plain"})
+    check(status == 415 and not os.path.exists(saved), f"a text/plain save answered {status}")
+    status, body = call(addr, "POST", "/api/move", "not json")
+    check(status == 400 and b"not JSON" in body, f"a move that is not JSON answered {status} {body[:100]!r}")
+    status, body = call(addr, "POST", "/api/move", json.dumps({"name": "nose", "image": [1, "x"]}))
+    check(status == 400, f"a move with a string coordinate answered {status}")
+    status, body = call(addr, "POST", "/api/move", json.dumps({"name": "no such feature", "image": [10, 10]}))
+    check(status == 422 and b"no such feature" in body, f"a move of an unknown feature answered {status}")
     check(not os.path.exists(saved), "the server wrote the features file before /api/save")
     check(os.listdir(os.path.join(work, "session")) == [], "the server wrote into its folder unasked")
-    for path in ("/api/map.obj", "/api/map.mtl", "/api/map.glb"):
+    for path in ("/api/map.obj", "/api/map.glb"):
         status, body = call(addr, "GET", path)
         check(status == 200 and len(body) > 100, f"GET {path}: {status}")
+    status, body = call(addr, "GET", "/api/map.mtl")
+    check(status == 200 and b"map_Kd chelsea.png" in body, f"GET /api/map.mtl: {status} {body!r}")
     status, body = call(addr, "POST", "/api/save")
     check(status == 200 and os.path.exists(saved), f"POST /api/save: {status} {body!r}")
     check(sorted(os.listdir(os.path.join(work, "session"))) == ["features.json"], "save wrote more than the features file")

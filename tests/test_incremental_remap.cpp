@@ -39,8 +39,14 @@ TEST(BumpMove, MovesTheVertexExactlyAndKeepsTheOtherFixedOnes) {
     EXPECT_FALSE(bump_move(copy, moved, Vec2(0.53 + 0.6, 0.51), {moved, other}, Vec2(-9, -9), Vec2(9, 9)));
     EXPECT_EQ(copy, uv);
     // As is one that would push a point out of the box.
-    EXPECT_FALSE(bump_move(copy, moved, Vec2(0.53, 0.51 + 0.3), {moved}, Vec2(0, 0), Vec2(1, 1)));
-    EXPECT_EQ(copy, uv);
+    // (With (0, 0) the other fixed vertex, the bump reaches 0.71: (0.5, 0.95) goes up by 0.07.)
+    const std::vector<Vec2> grid = before;
+    copy = grid;
+    EXPECT_TRUE(bump_move(copy, moved, Vec2(0.5, 0.7), {moved, 0}, Vec2(-9, -9), Vec2(9, 9)));
+    EXPECT_GT(copy[19 + 10 * 21].y(), 1.0);  // (0.5, 0.95) left the unit box
+    copy = grid;
+    EXPECT_FALSE(bump_move(copy, moved, Vec2(0.5, 0.7), {moved, 0}, Vec2(0, 0), Vec2(1, 1)));
+    EXPECT_EQ(copy, grid);
 }
 
 TEST(IncrementalRemap, SmallMovesOfEveryInteriorFeatureStartFromTheLastMap) {

@@ -11,7 +11,11 @@ let inFlight = 0;
 async function api(method, path, body) {
   inFlight++;
   try {
-    const r = await fetch(path, { method, body: body === undefined ? undefined : JSON.stringify(body) });
+    const r = await fetch(path, {
+      method,
+      headers: method === 'GET' ? {} : { 'Content-Type': 'application/json' },
+      body: body === undefined ? (method === 'GET' ? undefined : '{}') : JSON.stringify(body),
+    });
     const j = await r.json();
     if (!r.ok) throw new Error(j.error || `HTTP ${r.status}`);
     return j;
@@ -208,10 +212,10 @@ async function putFeatures(next, what) {
 }
 
 function rename(old, name) {
-  putFeatures(features.map((f) => (f.name === old ? { ...f, name } : f)), `renamed ${old} to ${name}`);
+  moveChain = moveChain.then(() => putFeatures(features.map((f) => (f.name === old ? { ...f, name } : f)), `renamed ${old} to ${name}`));
 }
 function remove(name) {
-  putFeatures(features.filter((f) => f.name !== name), `deleted ${name}`);
+  moveChain = moveChain.then(() => putFeatures(features.filter((f) => f.name !== name), `deleted ${name}`));
 }
 
 // Dragging a point: moves are sent while dragging (one at a time, the newest position wins) and
@@ -270,7 +274,7 @@ svg.addEventListener('click', (e) => {
   pending = null;
   marker.visible = false;
   selected = f.name;
-  putFeatures([...features, f], `added ${f.name}`);
+  moveChain = moveChain.then(() => putFeatures([...features, f], `added ${f.name}`));
 });
 
 $('mode').addEventListener('change', () => { textured.map = $('mode').value === 'checker' ? checker : photo; render(); });

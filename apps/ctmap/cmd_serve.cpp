@@ -47,10 +47,26 @@ struct ServeArgs {
 std::atomic<bool> g_stop{false};
 extern "C" void on_signal(int) { g_stop = true; }
 
-/// A JSON answer with its status.
+/// A JSON answer with its status (text that is not UTF-8, as a raw byte of a request quoted in a
+/// message, is replaced, never thrown on).
 void reply(httplib::Response& res, int status, const nlohmann::json& body) {
     res.status = status;
-    res.set_content(body.dump(), "application/json");
+    res.set_content(body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), "application/json");
+}
+
+/// A request body that is not the JSON expected (BadInput: HTTP 400 below).
+class BadRequest : public BadInput {
+public:
+    explicit BadRequest(const std::string& problem) : BadInput("request", problem) {}
+};
+
+/// The request's JSON body. \throw BadRequest if it is not JSON.
+nlohmann::json request_json(const httplib::Request& req) {
+    try {
+        return nlohmann::json::parse(req.body, nullptr, true, false);
+    } catch (const nlohmann::json::exception& e) {
+        throw BadRequest(std::string("the body is not JSON: ") + e.what());
+    }
 }
 
 /// Runs `f` on the session under the lock; BadInput -> 422, InternalError -> 500 (the CLI's exit
@@ -60,8 +76,8 @@ void guarded(std::mutex& m, httplib::Response& res, F&& f) {
     try {
         std::lock_guard<std::mutex> lock(m);
         reply(res, 200, f());
-    } catch (const nlohmann::json::exception& e) {
-        reply(res, 400, {{"error", std::string("the request is not the JSON expected: ") + e.what()}, {"exit_code", 2}});
+    } catch (const BadRequest& e) {
+        reply(res, 400, {{"error", e.what()}, {"exit_code", int(kExitBadInput)}});
     } catch (const BadInput& e) {
         reply(res, 422, {{"error", e.what()}, {"exit_code", int(kExitBadInput)}});
     } catch (const std::exception& e) {
@@ -140,6 +156,7 @@ int run_serve(const ServeArgs& a) {
     std::mutex m;
 
     httplib::Server svr;
+    std::atomic<int> svr_port{-1};  // known once bound; requests come only after that
     svr.set_payload_max_length(64u << 20);
     // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second server on a port
     // in use starts too and the two share the requests.
@@ -155,10 +172,11 @@ int run_serve(const ServeArgs& a) {
     });
     svr.Post("/api/move", [&](const httplib::Request& req, httplib::Response& res) {
         guarded(m, res, [&] {
-            const nlohmann::json j = nlohmann::json::parse(req.body, nullptr, true, false);
-            const std::vector<double> p = j.at("image").get<std::vector<double>>();
-            if (p.size() != 2) throw BadInput("request", "\"image\" must be [x, y] in pixels");
-            return session.move(j.at("name").get<std::string>(), Vec2(p[0], p[1]));
+            const nlohmann::json j = request_json(req);
+            if (!j.is_object() || !j.contains("name") || !j["name"].is_string() || !j.contains("image") ||
+                !j["image"].is_array() || j["image"].size() != 2 || !j["image"][0].is_number() || !j["image"][1].is_number())
+                throw BadRequest("a move is {\"name\": \"...\", \"image\": [x, y]} (pixels)");
+            return session.move(j["name"].get<std::string>(), Vec2(j["image"][0].get<double>(), j["image"][1].get<double>()));
         });
     });
     svr.Post("/api/save", [&](const httplib::Request&, httplib::Response& res) {
@@ -166,6 +184,26 @@ int run_serve(const ServeArgs& a) {
             session.save();
             return nlohmann::json{{"saved", features_path}};
         });
+    });
+    // Only pages of this server may use it: a request must name this server as its Host (a page
+    // elsewhere that rebinds a DNS name to 127.0.0.1 names its own), and a change must come as
+    // application/json, which a page of another origin cannot send without the browser asking first
+    // (a preflight this server never grants).
+    svr.set_pre_routing_handler([&](const httplib::Request& req, httplib::Response& res) {
+        const std::string host = req.get_header_value("Host");
+        const std::string port_suffix = ":" + std::to_string(svr_port);
+        const bool ours = host == a.host + port_suffix || host == "localhost" + port_suffix ||
+                          host == "127.0.0.1" + port_suffix || host == "[::1]" + port_suffix;
+        if (!ours) {
+            reply(res, 403, {{"error", "Host " + host + " is not this server"}, {"exit_code", int(kExitBadInput)}});
+            return httplib::Server::HandlerResponse::Handled;
+        }
+        if (req.method != "GET" && req.method != "HEAD" &&
+            req.get_header_value("Content-Type").rfind("application/json", 0) != 0) {
+            reply(res, 415, {{"error", "changes must be sent as application/json"}, {"exit_code", int(kExitBadInput)}});
+            return httplib::Server::HandlerResponse::Handled;
+        }
+        return httplib::Server::HandlerResponse::Unhandled;
     });
     auto file_route = [&](const std::string& name, const char* type, bool glb) {
         svr.Get("/api/" + name, [&, name, type, glb](const httplib::Request&, httplib::Response& res) {
@@ -175,8 +213,9 @@ int run_serve(const ServeArgs& a) {
                 const TexturedMesh tm = session.map()->textured();
                 const std::string image = fs::absolute(session.image_path()).string();
                 const std::string bytes = map_file_bytes(name, [&](const fs::path& dir) {
-                    if (glb) write_glb(tm, (dir / "map.glb").string(), image);
-                    else write_obj(tm, (dir / "map.obj").string(), image);
+                    if (glb) write_glb(tm, (dir / "map.glb").string(), image);  // the image embedded
+                    // The downloaded MTL names the image by its file name: beside the OBJ.
+                    else write_obj(tm, (dir / "map.obj").string(), (dir / fs::path(image).filename()).string());
                 });
                 res.set_content(bytes, type);
             } catch (const BadInput& e) {
@@ -208,7 +247,10 @@ int run_serve(const ServeArgs& a) {
         });
     }
 
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
     const int port = a.port == 0 ? svr.bind_to_any_port(a.host) : (svr.bind_to_port(a.host, a.port) ? a.port : -1);
+    svr_port = port;
     if (port < 0)
         throw BadInput(a.host + ":" + std::to_string(a.port), "cannot listen there (in use, or not an address of this machine)");
     std::cout << "ctmap serve: listening on http://" << a.host << ":" << port << "/ (" << a.mesh << ", " << a.image
@@ -219,17 +261,20 @@ int run_serve(const ServeArgs& a) {
         const std::string cmd = "xdg-open 'http://" + a.host + ":" + std::to_string(port) + "/' >/dev/null 2>&1 &";
         if (std::system(cmd.c_str()) != 0) std::cerr << "ctmap serve: could not start a browser (xdg-open)" << std::endl;
     }
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
     std::thread watcher([&] {
         while (!g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
         svr.stop();
     });
     const bool ok = svr.listen_after_bind();
+    const bool asked = g_stop;  // stopped by SIGINT/SIGTERM, not by a failure of the listener
     g_stop = true;
     watcher.join();
+    if (!asked) {
+        std::cerr << "ctmap: internal error: the server stopped listening" << std::endl;
+        return kExitInternal;
+    }
     if (!a.quiet) std::cout << "ctmap serve: stopped" << std::endl;
-    return ok || g_stop ? kExitOk : kExitInternal;
+    return ok || asked ? kExitOk : kExitInternal;
 }
 
 }  // namespace

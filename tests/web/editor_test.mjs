@@ -90,7 +90,9 @@ try {
   await page.mouse.up();
   await page.waitForTimeout(200);
   await settle();
-  const moved = f('left_eye', await features()).image;
+  // Where the server holds the eye (not the page's own copy of where it was dragged).
+  const serverState = await (await fetch(origin + '/api/state')).json();
+  const moved = f('left_eye', serverState.features.features).image;
   check(Math.hypot(moved[0] - target[0], moved[1] - target[1]) < 1.5,
     `the eye is at ${moved}, dragged to ${target} (${await status()})`);
   const c1 = await drawn();

@@ -30,7 +30,7 @@ EditSession::EditSession(TriMesh mesh, std::string mesh_path, std::string image_
     }
 }
 
-void EditSession::apply(FeatureSet fs) {
+void EditSession::apply(FeatureSet fs, const std::string& fallback) {
     fs.path = features_path_;
     fs.image = image_path_;
     fs.image_size = std::array<int, 2>{width_, height_};
@@ -42,10 +42,10 @@ void EditSession::apply(FeatureSet fs) {
     features_ = std::move(fs);
     map_ = std::move(r);
     last_update_ = "full";
+    last_fallback_ = fallback;  // only now: a refused change leaves the session as it was
 }
 
 nlohmann::json EditSession::set_features(const std::string& document) {
-    last_fallback_.clear();
     FeatureSet fs = parse_features(document, features_path_.empty() ? "features" : features_path_);
     apply(std::move(fs));
     return answer();
@@ -65,7 +65,7 @@ nlohmann::json EditSession::move(const std::string& name, const Vec2& image) {
                        "feature \"" + name + "\": its image point is not finite");
     fs.units = "pixels";
     const std::string file = features_path_.empty() ? "features" : features_path_;
-    last_fallback_.clear();
+    std::string fallback;
     if (map_ && options_.incremental) {
         // What `ctmap map` would refuse is refused with its message; a valid layout then starts
         // from the last map (edit/incremental_remap.h), or is mapped in full if it cannot.
@@ -78,15 +78,16 @@ nlohmann::json EditSession::move(const std::string& name, const Vec2& image) {
         int index = 0;
         while (checked.features[index].name != name) ++index;
         std::optional<MapResult> r = remap_moved_feature(*map_, index, image_to_uv(checked.features[index].image, width_, height_),
-                                                         options_.map, &last_fallback_);
+                                                         options_.map, &fallback);
         if (r) {
             features_ = std::move(checked);
             map_ = std::move(r);
             last_update_ = "incremental";
+            last_fallback_.clear();
             return answer();
         }
     }
-    apply(std::move(fs));
+    apply(std::move(fs), fallback);
     return answer();
 }
 

@@ -68,7 +68,8 @@ public:
 
 private:
     /// Checks and maps `fs` (pixels); on success makes it the session's features and map.
-    void apply(FeatureSet fs);
+    /// `fallback`: why a move is mapped in full (the answer's "full_because"), kept on success only.
+    void apply(FeatureSet fs, const std::string& fallback = "");
 
     TriMesh mesh_;
     std::string mesh_path_, image_path_, features_path_;

@@ -43,6 +43,8 @@ std::optional<MapResult> remap_moved_feature(const MapResult& previous, int feat
                 r.isometric_stats = std::move(st);
             } catch (const BadInput&) {  // the bumped start folds a triangle or crosses the border
                 continue;
+            } catch (const InternalError&) {  // a solver failed: the whole pipeline decides
+                return no("the optimiser failed from the bumped map");
             }
             r.uv = std::move(trial);
             started = moved_any = true;
