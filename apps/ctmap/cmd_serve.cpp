@@ -69,19 +69,31 @@ nlohmann::json request_json(const httplib::Request& req) {
     }
 }
 
-/// Runs `f` on the session under the lock; BadInput -> 422, InternalError -> 500 (the CLI's exit
-/// codes 2 and 3 in "exit_code"), a malformed request -> 400. The server never stops on an error.
-template <class F>
-void guarded(std::mutex& m, httplib::Response& res, F&& f) {
+/// The JSON answer for the exception being handled (call from a catch block): a malformed request
+/// -> 400, BadInput -> 422, anything else -> 500, with the CLI's exit code (2 or 3) in "exit_code".
+void reply_current_error(httplib::Response& res) {
     try {
-        std::lock_guard<std::mutex> lock(m);
-        reply(res, 200, f());
+        throw;
     } catch (const BadRequest& e) {
         reply(res, 400, {{"error", e.what()}, {"exit_code", int(kExitBadInput)}});
     } catch (const BadInput& e) {
         reply(res, 422, {{"error", e.what()}, {"exit_code", int(kExitBadInput)}});
     } catch (const std::exception& e) {
         reply(res, 500, {{"error", e.what()}, {"exit_code", int(kExitInternal)}});
+    } catch (...) {
+        reply(res, 500, {{"error", "an unknown failure"}, {"exit_code", int(kExitInternal)}});
+    }
+}
+
+/// Runs `f` on the session under the lock and answers its JSON, or the error (reply_current_error).
+/// The server never stops on an error.
+template <class F>
+void guarded(std::mutex& m, httplib::Response& res, F&& f) {
+    try {
+        std::lock_guard<std::mutex> lock(m);
+        reply(res, 200, f());
+    } catch (...) {
+        reply_current_error(res);
     }
 }
 
@@ -218,10 +230,8 @@ int run_serve(const ServeArgs& a) {
                     else write_obj(tm, (dir / "map.obj").string(), (dir / fs::path(image).filename()).string());
                 });
                 res.set_content(bytes, type);
-            } catch (const BadInput& e) {
-                reply(res, 422, {{"error", e.what()}, {"exit_code", int(kExitBadInput)}});
-            } catch (const std::exception& e) {
-                reply(res, 500, {{"error", e.what()}, {"exit_code", int(kExitInternal)}});
+            } catch (...) {
+                reply_current_error(res);
             }
         });
     };

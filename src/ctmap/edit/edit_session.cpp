@@ -30,6 +30,8 @@ EditSession::EditSession(TriMesh mesh, std::string mesh_path, std::string image_
     }
 }
 
+std::string EditSession::file_name() const { return features_path_.empty() ? "features" : features_path_; }
+
 void EditSession::apply(FeatureSet fs, const std::string& fallback) {
     fs.path = features_path_;
     fs.image = image_path_;
@@ -37,7 +39,7 @@ void EditSession::apply(FeatureSet fs, const std::string& fallback) {
     // What `ctmap map` checks after reading, in its order, with its messages.
     resolve_units(fs, width_, height_);
     check_features_on_mesh(fs, mesh_, mesh_path_, options_.map.snap);
-    MapResult r = naming_file(features_path_.empty() ? "features" : features_path_,
+    MapResult r = naming_file(file_name(),
                               [&] { return map_texture(mesh_, map_features(fs, width_, height_), options_.map); });
     features_ = std::move(fs);
     map_ = std::move(r);
@@ -46,7 +48,7 @@ void EditSession::apply(FeatureSet fs, const std::string& fallback) {
 }
 
 nlohmann::json EditSession::set_features(const std::string& document) {
-    FeatureSet fs = parse_features(document, features_path_.empty() ? "features" : features_path_);
+    FeatureSet fs = parse_features(document, file_name());
     apply(std::move(fs));
     return answer();
 }
@@ -59,12 +61,12 @@ nlohmann::json EditSession::move(const std::string& name, const Vec2& image) {
             f.image = image;
             found = true;
         }
-    if (!found) throw BadInput(features_path_.empty() ? "features" : features_path_, "no feature \"" + name + "\"");
+    if (!found) throw BadInput(file_name(), "no feature \"" + name + "\"");
     if (!image.allFinite())
-        throw BadInput(features_path_.empty() ? "features" : features_path_,
+        throw BadInput(file_name(),
                        "feature \"" + name + "\": its image point is not finite");
     fs.units = "pixels";
-    const std::string file = features_path_.empty() ? "features" : features_path_;
+    const std::string file = file_name();
     std::string fallback;
     if (map_ && options_.incremental) {
         // What `ctmap map` would refuse is refused with its message; a valid layout then starts

@@ -68,6 +68,8 @@ public:
 
 private:
     /// Checks and maps `fs` (pixels); on success makes it the session's features and map.
+    /// The features file as messages name it ("features" when the session has none).
+    std::string file_name() const;
     /// `fallback`: why a move is mapped in full (the answer's "full_because"), kept on success only.
     void apply(FeatureSet fs, const std::string& fallback = "");
 
