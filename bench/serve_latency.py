@@ -35,9 +35,18 @@ def call(addr, method, path, body=None, headers=None):
     req = urllib.request.Request(f"http://{addr}{path}", data=data, method=method, headers=headers)
     try:
         with urllib.request.urlopen(req, timeout=600) as r:
-            return r.status, json.loads(r.read())
+            return r.status, json.loads(r.read()), handler_ms(r.headers)
     except urllib.error.HTTPError as e:
-        return e.code, json.loads(e.read())
+        return e.code, json.loads(e.read()), handler_ms(e.headers)
+
+
+def handler_ms(headers):
+    """The server's whole time for a request (its Server-Timing header: handler;dur=MS)."""
+    for part in (headers.get("Server-Timing") or "").split(","):
+        name, _, dur = part.strip().partition(";dur=")
+        if name == "handler" and dur:
+            return float(dur)
+    return None
 
 
 def start(ctmap, mesh, image, features, full):
@@ -72,25 +81,36 @@ def main():
             interior = [f["name"] for f in fs["features"] if not f["name"].startswith("border")]
             servers = {full: start(ctmap, mesh, image, features, full) for full in (False, True)}
             rng = random.Random(1)
-            stats = {full: {"incremental": [], "full": [], "wall": [], "refused": 0} for full in servers}
+            stats = {full: {"incremental": [], "full": [], "wall": [], "library": [], "refused": 0} for full in servers}
+            ratios = []  # per move: symmetric Dirichlet of the default's answer / of --full's
             try:
                 for d in range(a.drags):
                     name = rng.choice(interior)
                     ang = rng.uniform(0, 6.283)
                     step = (2 * __import__("math").cos(ang), 2 * __import__("math").sin(ang))
+                    sd = {}
                     for full, (_, addr) in servers.items():
                         state = call(addr, "GET", "/api/state")[1]
                         at = next(f["image"] for f in state["features"]["features"] if f["name"] == name)
                         for k in range(1, 6):
                             t0 = time.perf_counter()
-                            status, ans = call(addr, "POST", "/api/move", json.dumps(
+                            status, ans, server_ms = call(addr, "POST", "/api/move", json.dumps(
                                 {"name": name, "image": [at[0] + k * step[0], at[1] + k * step[1]]}))
                             wall = (time.perf_counter() - t0) * 1000
                             if status != 200:
                                 stats[full]["refused"] += 1
                                 continue
-                            stats[full][ans["update"]].append(ans["timings_ms"]["total"])
+                            stats[full][ans["update"]].append(server_ms)
+                            if ans["update"] == "incremental":
+                                stats[full]["library"].append(ans["timings_ms"]["total"])
                             stats[full]["wall"].append(wall)
+                            sd[(full, k)] = ans["certificate"]["symmetric_dirichlet"], ans["update"]
+                    for k in range(1, 6):
+                        if (False, k) in sd and (True, k) in sd and sd[(False, k)][1] == "incremental":
+                            ratios.append(sd[(False, k)][0] / sd[(True, k)][0])
+                            if ratios[-1] > 1.05:
+                                print(f"  {name} step {k}: from the last map {sd[(False, k)][0]:.4f}, "
+                                      f"--full {sd[(True, k)][0]:.4f}", file=sys.stderr)
                     print(f"{mesh_name}: drag {d + 1}/{a.drags} ({name})", file=sys.stderr)
             finally:
                 for p, _ in servers.values():
@@ -99,8 +119,9 @@ def main():
         tri = None
         inc, fb, fullrun = stats[False]["incremental"], stats[False]["full"], stats[True]["full"]
         fmt = lambda xs: f"{statistics.median(xs):.0f} / {pct(xs, 95):.0f}" if xs else "–"
-        rows.append(f"| {mesh_name} | {len(inc)} of {len(inc) + len(fb)} | {fmt(inc)} | {fmt(fb)} | "
-                    f"{fmt(stats[False]['wall'])} | {fmt(fullrun)} | {stats[False]['refused']} / {stats[True]['refused']} |")
+        rows.append(f"| {mesh_name} | {len(inc)} of {len(inc) + len(fb)} | **{fmt(inc)}** | {fmt(stats[False]['library'])} | "
+                    f"{fmt(fb)} | {fmt(stats[False]['wall'])} | {fmt(fullrun)} | "
+                    f"{statistics.median(ratios):.3f} / {max(ratios):.3f} | {stats[False]['refused']} / {stats[True]['refused']} |")
         print(rows[-1], file=sys.stderr)
     cmd = f"python3 bench/serve_latency.py --drags {a.drags}"
     section = "\n".join([

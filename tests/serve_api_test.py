@@ -125,6 +125,13 @@ try:
                 because[answer["full_because"]] = because.get(answer["full_because"], 0) + 1
             feats = after
             check(next(f for f in feats if f["name"] == name)["image"] == new, f"move {k}: the feature did not move")
+            if "faces" not in answer:  # an answer from the last map: the cut mesh is the previous one
+                check(answer["update"] == "incremental", f"move {k}: a full answer without its mesh")
+                check(after_state["map"]["faces"] == before_state["map"]["faces"] and
+                      after_state["map"]["vertices"] == before_state["map"]["vertices"],
+                      f"move {k}: an answer without its mesh, but the cut mesh changed")
+                check(after_state["map"]["uv"] == answer["uv"], f"move {k}: the state's UVs are not the answer's")
+                answer = dict(answer, faces=after_state["map"]["faces"])
             verify_map(answer, feats, W, H, f"move {k}")
             if mapped % 10 == 1 or k == moves - 1:
                 full = full_map_sd(feats, W, H, k)

@@ -4,11 +4,13 @@
 // of the same features (the issue's bar); the bump keeps the other features bitwise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "ctmap/certify/certificate.h"
 #include "ctmap/edit/incremental_remap.h"
+#include "ctmap/errors.h"
 #include "ctmap/io/features.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
@@ -72,6 +74,22 @@ TEST(IncrementalRemap, SmallMovesOfEveryInteriorFeatureStartFromTheLastMap) {
                 continue;
             }
             ++incremental;
+            // Local: only vertices near the move's path changed (RemapOptions: within `region`
+            // times the bump's radius, itself at most `radius` times the map's diagonal, and
+            // about `region_vertices` of them).
+            const RemapOptions ro;
+            Vec2 lo = first.uv[0], hi = first.uv[0];
+            for (const Vec2& p : first.uv) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+            const Vec2 a = first.feature_uv[i], b = image_to_uv(moved.features[i].image, w, h);
+            const double bound = ro.region * std::max(ro.radius * (hi - lo).norm(), 4 * (b - a).norm() / 3.1);
+            int changed = 0;
+            for (std::size_t v = 0; v < first.uv.size(); ++v) {
+                if (r->uv[v] == first.uv[v]) continue;
+                ++changed;
+                const double t = std::clamp((first.uv[v] - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+                ASSERT_LE((first.uv[v] - (a + t * (b - a))).norm(), bound) << "vertex " << v << " moved";
+            }
+            EXPECT_LE(changed, ro.region_vertices + 1);
             const std::vector<MapFeature> mf = map_features(moved, w, h);
             // The certificate again, from the features as given (not from the result's own copy).
             std::vector<Vec2> want;
@@ -81,9 +99,17 @@ TEST(IncrementalRemap, SmallMovesOfEveryInteriorFeatureStartFromTheLastMap) {
             EXPECT_EQ(c.feature_max_error, 0) << fs.features[i].name;
             const double full = map_texture(mesh, mf, options).certificate.distortion.symmetric_dirichlet;
             const double sd = c.distortion.symmetric_dirichlet;
-            std::printf("  %s moved by (%g, %g): %d iterations, %.0f ms, symmetric Dirichlet %.4f (full map %.4f)\n",
-                        fs.features[i].name.c_str(), step.x(), step.y(), r->isometric_stats.iterations,
-                        r->timings_ms.total, sd, full);
+            // The same move with the whole map optimised (RemapOptions::local off).
+            RemapOptions whole;
+            whole.local = false;
+            const std::optional<MapResult> g =
+                remap_moved_feature(first, int(i), image_to_uv(moved.features[i].image, w, h), options, nullptr, whole);
+            const double global = g ? g->certificate.distortion.symmetric_dirichlet : sd;
+            std::printf("  %s moved by (%g, %g): %d iterations, %d vertices changed, %.0f ms, symmetric Dirichlet "
+                        "%.4f (whole map optimised %.4f, full map %.4f)\n",
+                        fs.features[i].name.c_str(), step.x(), step.y(), r->isometric_stats.iterations, changed,
+                        r->timings_ms.total, sd, global, full);
+            EXPECT_LE(sd, 1.05 * global) << fs.features[i].name;
             // Not above a full map's by more than 5% (a full map can stop higher: the optimiser's
             // border contacts, issue 11; the continued map then stays lower, which is no fault).
             EXPECT_LE(sd, 1.05 * full) << fs.features[i].name;
@@ -91,6 +117,49 @@ TEST(IncrementalRemap, SmallMovesOfEveryInteriorFeatureStartFromTheLastMap) {
     }
     // A drag's small steps should almost always start from the last map.
     EXPECT_GE(incremental, tried - 2) << incremental << " of " << tried;
+}
+
+// FeatureLayoutChecker (ctmap serve's moves) gives check_feature_layout's verdict and message for
+// the same features with other image points: valid moves, and moves that cross the border or
+// leave it, or put two features on one point.
+TEST(FeatureLayoutChecker, GivesTheVerdictAndMessageOfCheckFeatureLayout) {
+    const TriMesh mesh = read_mesh(data("meshes/lion-head.off"));
+    FeatureSet fs = read_features(data("features/lion-head_chelsea.json"));
+    int w = 0, h = 0;
+    resolve_feature_image(fs, "", w, h);
+    const std::vector<MapFeature> base = map_features(fs, w, h);
+    for (bool auto_border : {false, true}) {
+        const FeatureLayoutChecker checker(mesh, base, -1, auto_border);
+        int refused = 0, accepted = 0;
+        for (std::size_t i = 0; i < base.size(); ++i)
+            for (const Vec2 to : {Vec2(0.5, 0.5), Vec2(0.02, 0.98), Vec2(1.5, 0.5), base[(i + 1) % base.size()].uv,
+                                  Vec2(base[i].uv + Vec2(0.01, -0.01))}) {
+                std::vector<MapFeature> f = base;
+                f[i].uv = to;
+                std::string want, got;
+                int want_added = -1, got_added = -1;
+                try {
+                    want_added = int(check_feature_layout(mesh, f, -1, auto_border).auto_border.vertex.size());
+                } catch (const BadInput& e) {
+                    want = e.what();
+                }
+                try {
+                    got_added = int(checker.check(f).auto_border.vertex.size());
+                } catch (const BadInput& e) {
+                    got = e.what();
+                }
+                EXPECT_EQ(got, want) << base[i].name << " to " << to.transpose();
+                EXPECT_EQ(got_added, want_added) << base[i].name << " to " << to.transpose();
+                (want.empty() ? accepted : refused) += 1;
+            }
+        std::printf("  auto border %s: %d layouts accepted, %d refused, the same verdicts and messages\n",
+                    auto_border ? "on" : "off", accepted, refused);
+        EXPECT_GT(accepted, 0);
+        EXPECT_GT(refused, 0);
+        std::vector<MapFeature> renamed = base;
+        renamed[0].name += "x";
+        EXPECT_THROW(checker.check(renamed), BadInput);
+    }
 }
 
 }  // namespace

@@ -263,3 +263,57 @@ TEST(Isometric, FreeBorderStaysSimpleWhereTheFlatteningWouldOverlap) {
 
 }  // namespace
 }  // namespace ctmap::test
+
+namespace ctmap::test {
+namespace {
+
+// IsometricOptions::movable (ctmap serve's local re-map): only the listed vertices move, the rest
+// stay bitwise; the energy is the whole map's (the same as a run over every vertex measures on
+// entry) and it decreases; every face still has the map's orientation (exact predicates).
+TEST(Isometric, AMovableRegionMovesOnlyItsVerticesAndMeasuresTheWholeMap) {
+    const SmallCase sc = small_case();
+    const MapResult& r = sc.paper;
+    const TriMesh& mesh = r.cut.mesh;
+    // The vertices within 0.15 of the UV centroid, features among them (they stay held).
+    Vec2 c = Vec2::Zero();
+    for (const Vec2& p : r.uv) c += p;
+    c /= double(r.uv.size());
+    std::vector<int> movable;
+    for (int v = 0; v < int(r.uv.size()); ++v)
+        if ((r.uv[v] - c).norm() < 0.15) movable.push_back(v);
+    ASSERT_GT(movable.size(), 20u);
+    ASSERT_LT(movable.size(), r.uv.size() / 2);
+    std::vector<Vec2> uv = r.uv;
+    IsometricOptions local;
+    local.movable = movable;
+    const IsometricStats a = optimise_isometric(mesh, uv, r.cut.feature_vertex, local);
+    std::vector<Vec2> whole_uv = r.uv;
+    IsometricOptions none;
+    none.max_iterations = 0;
+    const IsometricStats w = optimise_isometric(mesh, whole_uv, r.cut.feature_vertex, none);
+    EXPECT_NEAR(a.energy_before(), w.energy_before(), 1e-12 * w.energy_before());
+    EXPECT_GT(a.iterations, 0) << a.stop;
+    EXPECT_LT(a.energy_after(), a.energy_before());
+    for (std::size_t i = 1; i < a.energy.size(); ++i) EXPECT_LE(a.energy[i], a.energy[i - 1]) << "iteration " << i;
+    std::vector<char> may(uv.size(), 0);
+    for (int v : movable) may[v] = 1;
+    int moved = 0;
+    for (std::size_t v = 0; v < uv.size(); ++v) {
+        if (!may[v]) ASSERT_EQ(uv[v], r.uv[v]) << "held vertex " << v << " moved";
+        moved += uv[v] != r.uv[v];
+    }
+    EXPECT_GT(moved, 0);
+    // The energy it reports is the whole map's energy of the result.
+    std::vector<Vec2> again = uv;
+    IsometricOptions measure = none;
+    measure.scale = a.scale;
+    EXPECT_NEAR(optimise_isometric(mesh, again, r.cut.feature_vertex, measure).energy_before(), a.energy_after(),
+                1e-12 * a.energy_after());
+    expect_certified(mesh, r.cut.feature_vertex, r.feature_uv, uv, a.iterations, "local run");
+    IsometricOptions bad;
+    bad.movable = {int(uv.size())};
+    EXPECT_THROW(optimise_isometric(mesh, uv, r.cut.feature_vertex, bad), BadInput);
+}
+
+}  // namespace
+}  // namespace ctmap::test

@@ -189,6 +189,11 @@ function drawList() {
 }
 
 function showMap(answer) {
+  // A move's answer from the last map leaves out the cut mesh: it is the previous answer's.
+  if (!answer.faces && map) {
+    answer.vertices = map.vertices;
+    answer.faces = map.faces;
+  }
   map = answer;
   setGeometry(answer.vertices, answer.faces, answer.uv);
   const c = answer.certificate;

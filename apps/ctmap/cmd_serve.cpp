@@ -89,12 +89,17 @@ void reply_current_error(httplib::Response& res) {
 /// The server never stops on an error.
 template <class F>
 void guarded(std::mutex& m, httplib::Response& res, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
     try {
         std::lock_guard<std::mutex> lock(m);
         reply(res, 200, f());
     } catch (...) {
         reply_current_error(res);
     }
+    // The server's whole time for the request, body written included (the standard header that
+    // browsers' developer tools show; bench/serve_latency.py reads it).
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    res.set_header("Server-Timing", "handler;dur=" + std::to_string(ms));
 }
 
 /// Writes the session's map with `write` into a private scratch folder and returns file `name`'s bytes.

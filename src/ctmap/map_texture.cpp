@@ -182,7 +182,8 @@ struct Prepared {
     double moved = 0;  ///< the largest distance a point feature moved onto the mesh (input units)
 };
 
-Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, double snap) {
+/// The mesh's share of `prepare`: everything but the image points.
+Prepared prepare_mesh(const TriMesh& input, const std::vector<MapFeature>& features, double snap) {
     Prepared p;
     // A caller's mesh that is no disc is a BadInput here, not a failure deep in the cut.
     require_disc(compute_topology(input), "");
@@ -207,6 +208,13 @@ Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, 
             if (fv[i] == fv[j])
                 throw BadInput("", "features \"" + features[j].name + "\" and \"" + features[i].name +
                                                   "\" are at the same mesh vertex " + std::to_string(fv[i]));
+    return p;
+}
+
+/// The image points' share of `prepare`: finite and distinct, into `p.names` and `p.uv`.
+void prepare_image_points(Prepared& p, const std::vector<MapFeature>& features) {
+    p.names.clear();
+    p.uv.clear();
     for (const MapFeature& f : features) {
         if (!f.uv.allFinite())
             throw BadInput("", "feature \"" + f.name + "\": its UV is not finite (NaN or infinity)");
@@ -225,23 +233,31 @@ Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, 
             throw BadInput("", "features \"" + features[a].name + "\" and \"" + features[b].name +
                                               "\" have the same image point; each feature needs its own");
         }
+}
+
+Prepared prepare(const TriMesh& input, const std::vector<MapFeature>& features, double snap) {
+    Prepared p = prepare_mesh(input, features, snap);
+    prepare_image_points(p, features);
     return p;
 }
 
 /// Places the automatic border (domain/auto_border.h) when the given features need one and
 /// appends its features to `in` (after the given ones, named auto_border_1, ...).
-AutoBorder add_border_features(Prepared& in) {
-    AutoBorder added = place_border_features(in.mesh, in.feature_vertex, in.uv, in.names);
+AutoBorder add_border_features(const TriMesh& mesh, std::vector<int>& feature_vertex, std::vector<Vec2>& uv,
+                               std::vector<std::string>& names) {
+    AutoBorder added = place_border_features(mesh, feature_vertex, uv, names);
     for (std::size_t j = 0; j < added.vertex.size(); ++j) {
         std::string name = "auto_border_" + std::to_string(j + 1);
-        while (std::find(in.names.begin(), in.names.end(), name) != in.names.end()) name += "'";
-        in.names.push_back(name);
+        while (std::find(names.begin(), names.end(), name) != names.end()) name += "'";
+        names.push_back(name);
         added.name.push_back(name);
-        in.feature_vertex.push_back(added.vertex[j]);
-        in.uv.push_back(added.uv[j]);
+        feature_vertex.push_back(added.vertex[j]);
+        uv.push_back(added.uv[j]);
     }
     return added;
 }
+
+AutoBorder add_border_features(Prepared& in) { return add_border_features(in.mesh, in.feature_vertex, in.uv, in.names); }
 
 }  // namespace
 
@@ -251,6 +267,39 @@ FeatureLayout check_feature_layout(const TriMesh& input, const std::vector<MapFe
     FeatureLayout out;
     if (auto_border) out.auto_border = add_border_features(in);
     out.triangulation = triangulate_features(in.uv, border_features(in.mesh, in.feature_vertex), in.names);
+    return out;
+}
+
+struct FeatureLayoutChecker::State {
+    Prepared prepared;                 // the mesh's share, image points not yet set
+    std::vector<int> border_features;  // of the given features (what the triangulation needs without an added border)
+};
+
+FeatureLayoutChecker::FeatureLayoutChecker(const TriMesh& mesh, const std::vector<MapFeature>& features, double snap,
+                                           bool auto_border)
+    : auto_border_(auto_border) {
+    auto st = std::make_shared<State>();
+    st->prepared = prepare_mesh(mesh, features, snap);
+    st->border_features = ctmap::border_features(st->prepared.mesh, st->prepared.feature_vertex);
+    for (const MapFeature& f : features) names_.push_back(f.name), vertex_.push_back(f.vertex), point_.push_back(f.point);
+    state_ = std::move(st);
+}
+
+FeatureLayout FeatureLayoutChecker::check(const std::vector<MapFeature>& features) const {
+    bool same = features.size() == names_.size();
+    for (std::size_t i = 0; same && i < features.size(); ++i)
+        same = features[i].name == names_[i] && features[i].vertex == vertex_[i] &&
+               (features[i].vertex >= 0 || features[i].point == point_[i]);
+    if (!same) throw BadInput("", "FeatureLayoutChecker::check: the features differ from the checker's in more than their UVs");
+    const Prepared& p = state_->prepared;
+    Prepared in;  // the image points' share, with p's mesh read in place (not copied)
+    in.feature_vertex = p.feature_vertex;
+    prepare_image_points(in, features);
+    FeatureLayout out;
+    if (auto_border_) out.auto_border = add_border_features(p.mesh, in.feature_vertex, in.uv, in.names);
+    out.triangulation = triangulate_features(
+        in.uv, out.auto_border.vertex.empty() ? state_->border_features : border_features(p.mesh, in.feature_vertex),
+        in.names);
     return out;
 }
 

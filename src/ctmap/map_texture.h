@@ -6,6 +6,7 @@
 /// call this one function, so what they measure is what users run.
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -150,6 +151,27 @@ struct FeatureLayout {
 /// \pre as map_texture. \throw BadInput as map_texture.
 FeatureLayout check_feature_layout(const TriMesh& mesh, const std::vector<MapFeature>& features,
                                    double snap = -1, bool auto_border = true);
+
+/// `check_feature_layout` for a feature set whose image points change while the features stay at
+/// their mesh vertices and points (`ctmap serve`'s drags): the mesh's share of the checks (mesh
+/// topology, vertex indices, points put on the mesh) is done once, in the constructor.
+class FeatureLayoutChecker {
+public:
+    /// \pre as check_feature_layout. \throw BadInput as check_feature_layout, for the mesh's share.
+    FeatureLayoutChecker(const TriMesh& mesh, const std::vector<MapFeature>& features, double snap = -1,
+                         bool auto_border = true);
+    /// check_feature_layout(mesh, features, snap, auto_border), the same verdict and message.
+    /// \pre `features` are the constructor's with only their UVs changed (else BadInput).
+    FeatureLayout check(const std::vector<MapFeature>& features) const;
+
+private:
+    struct State;
+    std::shared_ptr<const State> state_;
+    bool auto_border_;
+    std::vector<std::string> names_;
+    std::vector<int> vertex_;
+    std::vector<Vec3> point_;
+};
 
 /// Puts the point features of `features` on `mesh` as vertices, as `map_texture` does (a point
 /// within `snap` of a vertex uses it, else the face or edge it lies on is split); the input's

@@ -41,8 +41,15 @@ void EditSession::apply(FeatureSet fs, const std::string& fallback) {
     check_features_on_mesh(fs, mesh_, mesh_path_, options_.map.snap);
     MapResult r = naming_file(file_name(),
                               [&] { return map_texture(mesh_, map_features(fs, width_, height_), options_.map); });
+    std::optional<FeatureLayoutChecker> checker;
+    if (options_.incremental)
+        checker = naming_file(file_name(), [&] {
+            return FeatureLayoutChecker(mesh_, map_features(fs, width_, height_), options_.map.snap,
+                                        options_.map.auto_border);
+        });
     features_ = std::move(fs);
     map_ = std::move(r);
+    checker_ = std::move(checker);
     last_update_ = "full";
     last_fallback_ = fallback;  // only now: a refused change leaves the session as it was
 }
@@ -68,15 +75,12 @@ nlohmann::json EditSession::move(const std::string& name, const Vec2& image) {
     fs.units = "pixels";
     const std::string file = file_name();
     std::string fallback;
-    if (map_ && options_.incremental) {
+    if (map_ && checker_) {
         // What `ctmap map` would refuse is refused with its message; a valid layout then starts
         // from the last map (edit/incremental_remap.h), or is mapped in full if it cannot.
         FeatureSet checked = fs;
         resolve_units(checked, width_, height_);
-        naming_file(file, [&] {
-            return check_feature_layout(mesh_, map_features(checked, width_, height_), options_.map.snap,
-                                        options_.map.auto_border);
-        });
+        naming_file(file, [&] { return checker_->check(map_features(checked, width_, height_)); });
         int index = 0;
         while (checked.features[index].name != name) ++index;
         std::optional<MapResult> r = remap_moved_feature(*map_, index, image_to_uv(checked.features[index].image, width_, height_),
@@ -86,7 +90,7 @@ nlohmann::json EditSession::move(const std::string& name, const Vec2& image) {
             map_ = std::move(r);
             last_update_ = "incremental";
             last_fallback_.clear();
-            return answer();
+            return answer(false);  // the cut mesh is unchanged
         }
     }
     apply(std::move(fs), fallback);
@@ -105,14 +109,16 @@ nlohmann::json flat(const std::vector<T>& items) {
 
 }  // namespace
 
-nlohmann::json EditSession::answer() const {
+nlohmann::json EditSession::answer(bool with_mesh) const {
     if (!map_) return nullptr;
     MapReportInputs in{mesh_path_, features_path_, image_path_, width_, height_, mesh_.num_vertices(),
                        mesh_.num_faces()};
     nlohmann::json j = map_report(*map_, in);
     j["uv"] = flat(map_->uv);
-    j["vertices"] = flat(map_->cut.mesh.positions);
-    j["faces"] = flat(map_->cut.mesh.faces);
+    if (with_mesh) {
+        j["vertices"] = flat(map_->cut.mesh.positions);
+        j["faces"] = flat(map_->cut.mesh.faces);
+    }
     j["update"] = last_update_;  // "full": the whole pipeline; "incremental": from the previous map
     if (last_update_ == "full" && !last_fallback_.empty()) j["full_because"] = last_fallback_;
     return j;

@@ -51,8 +51,9 @@ public:
     /// The last map: its report (as `ctmap map --report` writes it) with "uv" (per vertex of the
     /// cut mesh, flat u v), "vertices" (flat xyz), "faces" (flat) and "update" ("full" or
     /// "incremental"; with "full_because" when a move could not start from the last map) added;
-    /// null before any map.
-    nlohmann::json answer() const;
+    /// null before any map. `with_mesh` false leaves out "vertices" and "faces" (a move's answer
+    /// from the last map: its cut mesh is the previous answer's).
+    nlohmann::json answer(bool with_mesh = true) const;
 
     /// The current features as a features document (DESIGN §4, pixels).
     std::string features_document() const;
@@ -79,6 +80,8 @@ private:
     EditSessionOptions options_;
     FeatureSet features_;
     std::optional<MapResult> map_;
+    /// The layout check of map_'s features with the mesh's share done (moves change only image points).
+    std::optional<FeatureLayoutChecker> checker_;
     std::string last_update_;    ///< how the last map was made: "full" or "incremental"
     std::string last_fallback_;  ///< why the last move was mapped in full (empty: it was not a move)
 };

@@ -1,14 +1,40 @@
 #include "ctmap/edit/incremental_remap.h"
 
+#include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "ctmap/errors.h"
 #include "ctmap/refine/bump_move.h"
 
 namespace ctmap {
+namespace {
+
+/// Each UV's distance to the segment [a, b].
+std::vector<double> distances_to_segment(const std::vector<Vec2>& uv, const Vec2& a, const Vec2& b) {
+    std::vector<double> out(uv.size());
+    const Vec2 ab = b - a;
+    const double len2 = ab.squaredNorm();
+    for (std::size_t i = 0; i < uv.size(); ++i) {
+        const double t = len2 > 0 ? std::clamp((uv[i] - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+        out[i] = (uv[i] - (a + t * ab)).norm();
+    }
+    return out;
+}
+
+/// The vertices whose UV lies within `reach` of the segment [a, b].
+std::vector<int> vertices_near(const std::vector<Vec2>& uv, const Vec2& a, const Vec2& b, double reach) {
+    const std::vector<double> dist = distances_to_segment(uv, a, b);
+    std::vector<int> out;
+    for (int i = 0; i < int(uv.size()); ++i)
+        if (dist[i] <= reach) out.push_back(i);
+    return out;
+}
+
+}  // namespace
 
 std::optional<MapResult> remap_moved_feature(const MapResult& previous, int feature, const Vec2& target,
-                                             const MapOptions& options, std::string* why) {
+                                             const MapOptions& options, std::string* why, const RemapOptions& remap) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     auto no = [&](const char* reason) {
@@ -31,13 +57,29 @@ std::optional<MapResult> remap_moved_feature(const MapResult& previous, int feat
     // half, a quarter of the rest); the map is optimised there with the feature held, which
     // evens out the triangles the bump squeezed, and the rest of the move starts from that.
     bool moved_any = false;
+    double radius = std::numeric_limits<double>::infinity();
+    if (remap.local) {
+        // At most `region_vertices` vertices within `region` radii of the move's path (the map's
+        // density varies a lot: a radius alone can take in most of it), but never a bump that
+        // needs more than a few steps.
+        Vec2 lo = r.uv[v], hi = r.uv[v];
+        for (const Vec2& p : r.uv) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+        radius = remap.radius * (hi - lo).norm();
+        std::vector<double> dist = distances_to_segment(r.uv, r.uv[v], target);
+        if (remap.region_vertices < int(dist.size())) {
+            std::nth_element(dist.begin(), dist.begin() + remap.region_vertices, dist.end());
+            radius = std::min(radius, dist[remap.region_vertices] / remap.region);
+        }
+        radius = std::max(radius, 4 * (target - r.uv[v]).norm() / 3.1);
+    }
     for (int stage = 0; stage < 4 && r.uv[v] != target; ++stage) {
         const Vec2 from = r.uv[v];
         bool started = false;
         for (double t : {1.0, 0.5, 0.25}) {
             std::vector<Vec2> trial = r.uv;
             const Vec2 to = t == 1.0 ? target : Vec2(from + t * (target - from));
-            if (!bump_move(trial, v, to, fixed, iopt.box_lo, iopt.box_hi)) continue;
+            if (!bump_move(trial, v, to, fixed, iopt.box_lo, iopt.box_hi, 8, radius)) continue;
+            if (remap.local) iopt.movable = vertices_near(r.uv, from, to, remap.region * radius);
             try {
                 IsometricStats st = optimise_isometric(r.cut.mesh, trial, fixed, iopt);
                 r.isometric_stats = std::move(st);

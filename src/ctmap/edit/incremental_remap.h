@@ -12,12 +12,28 @@
 
 namespace ctmap {
 
+/// How far a move reaches into the map.
+struct RemapOptions {
+    /// Local (the default): the bump's radius is at most `radius` times the diagonal of the map's
+    /// UV bounding box, and only the vertices within
+    /// `region` times that radius of the move's path are optimised, the rest held where they
+    /// are: a drag's answer costs a small system. Off: the bump reaches to the nearest other
+    /// feature and the whole map is optimised (slower, the energy's minimum over the whole map).
+    bool local = true;
+    double radius = 0.08;
+    double region = 1.5;
+    /// The radius shrinks until about this many vertices lie in the optimised region (not below
+    /// what a bump of the move's length needs).
+    int region_vertices = 600;
+};
+
 /// `previous` with given feature `feature` moved to UV `target`, optimised and certified; empty
 /// (the caller maps in full) when the move cannot start from `previous`: options without the
 /// optimiser, a move too large for the bump, a start that is not valid, or a certificate that
 /// fails. `why` (if given) says which.
 /// \pre `previous` came from map_texture with `options`; 0 <= feature < given features.
 std::optional<MapResult> remap_moved_feature(const MapResult& previous, int feature, const Vec2& target,
-                                             const MapOptions& options, std::string* why = nullptr);
+                                             const MapOptions& options, std::string* why = nullptr,
+                                             const RemapOptions& remap = {});
 
 }  // namespace ctmap

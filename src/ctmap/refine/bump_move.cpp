@@ -25,7 +25,7 @@ bool bump_once(std::vector<Vec2>& uv, int vertex, const Vec2& d, double r, const
 }  // namespace
 
 bool bump_move(std::vector<Vec2>& uv, int vertex, const Vec2& target, const std::vector<int>& fixed, const Vec2& lo,
-               const Vec2& hi, int max_steps) {
+               const Vec2& hi, int max_steps, double max_radius) {
     if (!(target - uv[vertex]).allFinite()) return false;
     if (target == uv[vertex]) return true;
     std::vector<Vec2> out = uv;
@@ -36,7 +36,8 @@ bool bump_move(std::vector<Vec2>& uv, int vertex, const Vec2& target, const std:
         double r = std::numeric_limits<double>::infinity();
         for (int f : fixed)
             if (f != vertex) r = std::min(r, (out[f] - p).norm());
-        if (!std::isfinite(r)) return false;
+        r = std::min(r, max_radius);
+        if (!std::isfinite(r) || !(r > 0)) return false;
         const Vec2 rest = target - p;
         const int steps = int(std::ceil(3.1 * rest.norm() / r));
         if (steps > max_steps - step) return false;

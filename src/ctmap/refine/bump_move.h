@@ -3,6 +3,7 @@
 /// Moves one fixed vertex of a valid map to a new UV by a smooth bump deformation of the plane
 /// around it, so that a map already optimised can be optimised again from there (`ctmap serve`'s
 /// incremental re-map, issue 15) instead of from the paper's embedding.
+#include <limits>
 #include <vector>
 
 #include "ctmap/mesh.h"
@@ -16,9 +17,11 @@ namespace ctmap {
 /// displacement at most 1/2). The piecewise-linear map can still fold a triangle that is large
 /// against r: the caller checks the result with exact predicates (optimise_isometric does on entry).
 /// A longer move is made in up to `max_steps` equal bumps, the reach measured again before each.
+/// `max_radius` caps r, so that only UVs within it of the vertex move (a local edit).
 /// \pre vertex is an index of uv. \return false (uv unchanged) if the move needs more steps or a
 ///      displaced UV would leave [lo, hi].
 bool bump_move(std::vector<Vec2>& uv, int vertex, const Vec2& target, const std::vector<int>& fixed, const Vec2& lo,
-               const Vec2& hi, int max_steps = 8);
+               const Vec2& hi, int max_steps = 8,
+               double max_radius = std::numeric_limits<double>::infinity());
 
 }  // namespace ctmap

@@ -2,6 +2,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SVD>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <dlfcn.h>
 #include <tbb/parallel_for.h>
@@ -157,6 +158,29 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             throw BadInput("", "optimise_isometric: fixed vertex " + std::to_string(v) + " is out of range");
         is_fixed[v] = 1;
     }
+    const bool local_only = !o.movable.empty();
+    if (local_only) {
+        std::vector<char> may_move(nv, 0);
+        for (int v : o.movable) {
+            if (v < 0 || v >= nv)
+                throw BadInput("", "optimise_isometric: movable vertex " + std::to_string(v) + " is out of range");
+            may_move[v] = 1;
+        }
+        for (int v = 0; v < nv; ++v)
+            if (!may_move[v]) is_fixed[v] = 1;
+    }
+    // The faces whose energy can change: those with a vertex that is not held (all of them unless
+    // `movable` restricts the moving vertices). Only these are visited in the iterations.
+    std::vector<int> active;
+    std::vector<Tri> active_tris;
+    for (int f = 0; f < nf; ++f) {
+        const Tri& t = mesh.faces[f];
+        if (!local_only || !is_fixed[t[0]] || !is_fixed[t[1]] || !is_fixed[t[2]]) active.push_back(f);
+    }
+    if (local_only)
+        for (int f : active) active_tris.push_back(mesh.faces[f]);
+    const std::vector<Tri>& step_faces = local_only ? active_tris : mesh.faces;
+    const int na = int(active.size());
     // The map's orientation, and the precondition that it is valid.
     int sigma = 0;
     for (int f = 0; f < nf; ++f) {
@@ -192,14 +216,21 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         frame[f] = face_frame(k * mesh.positions[t[0]], k * mesh.positions[t[1]], k * mesh.positions[t[2]], sigma < 0);
         area_sum += frame[f].area;
     }
+    auto face_energy = [&](int f, const std::vector<Vec2>& x) {
+        const FaceFrame& F = frame[f];
+        if (F.area == 0) return 0.0;
+        const Tri& t = mesh.faces[f];
+        return F.area * symmetric_dirichlet_density(face_jacobian(F, x[t[0]], x[t[1]], x[t[2]]));
+    };
+    // The held faces' share, once (0 when every face is active: the same bits as a plain sum).
+    double held_energy = 0;
+    if (local_only) {
+        std::vector<char> is_active(nf, 0);
+        for (int f : active) is_active[f] = 1;
+        held_energy = chunked_sum(nf, o.parallel, [&](int f) { return is_active[f] ? 0.0 : face_energy(f, uv); });
+    }
     auto energy_of = [&](const std::vector<Vec2>& x) {
-        return chunked_sum(nf, o.parallel, [&](int f) {
-                   const FaceFrame& F = frame[f];
-                   if (F.area == 0) return 0.0;
-                   const Tri& t = mesh.faces[f];
-                   return F.area * symmetric_dirichlet_density(face_jacobian(F, x[t[0]], x[t[1]], x[t[2]]));
-               }) /
-               area_sum;
+        return (held_energy + chunked_sum(na, o.parallel, [&](int i) { return face_energy(active[i], x); })) / area_sum;
     };
 
     // Unknowns per vertex.
@@ -341,14 +372,19 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     }
     single_threaded_blas();
     const SerialOpenMp serial_openmp;
+    // A local optimisation (`movable`) has a small system: Eigen's simplicial Cholesky (AMD
+    // ordering) factorises it faster than CHOLMOD's supernodal one, whose OpenMP team costs more
+    // than the work there (measured on ctmap serve's moves).
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
-    solver.analyzePattern(K);
+    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> small_solver;
+    if (local_only) small_solver.analyzePattern(K);
+    else solver.analyzePattern(K);
 
     const BorderGuard guard(loop, box_lo, box_hi);
 
     // Per face: the singular vectors and values of J and the four eigenvalues of the energy's
     // Hessian with respect to J, projected to be non-negative (face_newton below).
-    std::vector<FaceNewton> local(nf);
+    std::vector<FaceNewton> local(na);  // per active face
     std::vector<Vec2> d(nv), trial(nv);
     Eigen::VectorXd rhs(unknowns), y(unknowns);
 
@@ -362,23 +398,25 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     double fresh_gain = 0;
     for (int it = 0; it < o.max_iterations;) {
         const double e0 = objective;
-        for_faces(nf, o.parallel, [&](int f) {
+        for_faces(na, o.parallel, [&](int i) {
+            const int f = active[i];
             const FaceFrame& F = frame[f];
             if (F.area == 0) return;
             const Tri& t = mesh.faces[f];
-            local[f] = face_newton(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]]));
+            local[i] = face_newton(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]]));
         });
         // The Newton system in the unknowns: per face, the blocks A sum_i lambda_i (E_i g_k)(E_i g_l)^T
         // of the projected Hessian and the gradient A dPsi/dJ g_k.
         if (refresh) std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
         rhs.setZero();
         std::size_t next = 0;
-        for (int f = 0; f < nf; ++f) {
+        for (int ai = 0; ai < na; ++ai) {  // in face order, as the pattern's entries were listed
+            const int f = active[ai];
             const Tri& t = mesh.faces[f];
             const FaceFrame& F = frame[f];
             Vec2 g[3];
             face_gradients(F, g);
-            const FaceNewton& L = local[f];
+            const FaceNewton& L = local[ai];
             Vec2 eg[4][3];  // E_i g_k
             for (int i = 0; i < 4; ++i)
                 for (int k = 0; k < 3; ++k) eg[i][k] = L.mode[i] * g[k];
@@ -420,14 +458,15 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             for (int c = 0; c < unknowns; ++c) trace += K.valuePtr()[diag[c]];
             const double whisper = 1e-10 * trace / unknowns;
             for (int c = 0; c < unknowns; ++c) K.valuePtr()[diag[c]] += whisper;
-            solver.factorize(K);
+            if (local_only) small_solver.factorize(K);
+            else solver.factorize(K);
             ++stats.factorisations;
-            if (solver.info() != Eigen::Success) {
+            if ((local_only ? small_solver.info() : solver.info()) != Eigen::Success) {
                 stats.stop = "no descent step";
                 break;
             }
         }
-        y = solver.solve(rhs);
+        y = local_only ? Eigen::VectorXd(small_solver.solve(rhs)) : Eigen::VectorXd(solver.solve(rhs));
         // The Newton decrement: the decrease the quadratic model predicts for the whole step. It
         // decides convergence (on a new Hessian only): a step cut short by the flip-free bound or
         // the line search may gain little far from the minimum, the model's prediction does not.
@@ -451,7 +490,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         // Where the border guard refuses a step because two border edges would meet, the
         // vertices of those edges are held where they are for this iteration and the search
         // starts again (at most 8 times): a contact stops the border there, not the whole map.
-        double step = std::min(1.0, 0.9 * max_flip_free_step(mesh.faces, uv, d, sigma, o.parallel));
+        double step = std::min(1.0, 0.9 * max_flip_free_step(step_faces, uv, d, sigma, o.parallel));
         bool accepted = false;
         double e1 = e0, sd1 = 0;
         int holds = 0;
@@ -462,9 +501,9 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             e1 = sd1 + barrier_of(trial);
             if (!(e1 < e0)) continue;
             std::atomic<bool> exact_ok{true};
-            for_faces(nf, o.parallel, [&](int f) {
+            for_faces(na, o.parallel, [&](int i) {
                 if (!exact_ok.load(std::memory_order_relaxed)) return;
-                const Tri& t = mesh.faces[f];
+                const Tri& t = mesh.faces[active[i]];
                 if (orientation_2d(trial[t[0]], trial[t[1]], trial[t[2]]) != sigma) exact_ok = false;
             });
             if (!exact_ok) {
@@ -481,7 +520,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
                     if (held) {
                         ++holds;
                         ++stats.border_holds;
-                        step = 2 * std::min(1.0, 0.9 * max_flip_free_step(mesh.faces, uv, d, sigma, o.parallel));
+                        step = 2 * std::min(1.0, 0.9 * max_flip_free_step(step_faces, uv, d, sigma, o.parallel));
                         h = -1;  // the loop's step halving and ++h bring it back to the new start
                     }
                 }

@@ -47,6 +47,11 @@ struct IsometricOptions {
     /// one that makes the mesh's area the map's UV area on entry. A run continued from another's
     /// map passes that run's `IsometricStats::scale`, so that both minimise the same energy.
     double scale = 0;
+    /// If not empty: only these vertices may move (the others are held like `fixed`), and the
+    /// per-face work of each iteration runs over the faces that touch them; the energy is still the
+    /// whole map's. An optimisation local to a region, e.g. around a feature just moved
+    /// (edit/incremental_remap). Indices out of range are a BadInput.
+    std::vector<int> movable;
     /// Called after every accepted iteration with the map and its symmetric Dirichlet energy
     /// (tests certify each iterate). The line search decreases that energy plus the free
     /// border's barrier (zero away from the image's edges).
