@@ -58,13 +58,14 @@ std::optional<MapResult> remap_moved_feature(const MapResult& previous, int feat
     // evens out the triangles the bump squeezed, and the rest of the move starts from that.
     bool moved_any = false;
     double radius = std::numeric_limits<double>::infinity();
-    if (remap.local) {
+    Vec2 map_lo = r.uv[v], map_hi = r.uv[v];
+    for (const Vec2& p : r.uv) map_lo = map_lo.cwiseMin(p), map_hi = map_hi.cwiseMax(p);
+    const bool local = remap.local && (target - r.uv[v]).norm() <= remap.local_reach * (map_hi - map_lo).norm();
+    if (local) {
         // At most `region_vertices` vertices within `region` radii of the move's path (the map's
         // density varies a lot: a radius alone can take in most of it), but never a bump that
         // needs more than a few steps.
-        Vec2 lo = r.uv[v], hi = r.uv[v];
-        for (const Vec2& p : r.uv) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-        radius = remap.radius * (hi - lo).norm();
+        radius = remap.radius * (map_hi - map_lo).norm();
         std::vector<double> dist = distances_to_segment(r.uv, r.uv[v], target);
         if (remap.region_vertices < int(dist.size())) {
             std::nth_element(dist.begin(), dist.begin() + remap.region_vertices, dist.end());
@@ -79,7 +80,7 @@ std::optional<MapResult> remap_moved_feature(const MapResult& previous, int feat
             std::vector<Vec2> trial = r.uv;
             const Vec2 to = t == 1.0 ? target : Vec2(from + t * (target - from));
             if (!bump_move(trial, v, to, fixed, iopt.box_lo, iopt.box_hi, 8, radius)) continue;
-            if (remap.local) iopt.movable = vertices_near(r.uv, from, to, remap.region * radius);
+            if (local) iopt.movable = vertices_near(r.uv, from, to, remap.region * radius);
             try {
                 IsometricStats st = optimise_isometric(r.cut.mesh, trial, fixed, iopt);
                 r.isometric_stats = std::move(st);
