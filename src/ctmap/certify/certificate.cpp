@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <tuple>
 #include <unordered_map>
 
 #include "ctmap/errors.h"
@@ -241,24 +243,39 @@ Certificate certify(const TexturedMesh& tm, const std::vector<int>& feature_vert
         if (v < 0 || v >= nv)
             throw BadInput("", "feature " + std::to_string(i) + " names vertex " + std::to_string(v) + ", but the map has " +
                                    std::to_string(nv) + " vertices");
-        feature_of[v] = int(i);
+    }
+    // With charts, a feature occurs once per chart (issue 13): each occurrence is compared with
+    // the corners of its vertex in its own chart only. Occurrences of one vertex chain through
+    // `next_of`.
+    const std::vector<int>& occurrence_chart = options.feature_chart;
+    if (!occurrence_chart.empty() && occurrence_chart.size() != feature_vertex.size())
+        throw BadInput("", std::to_string(occurrence_chart.size()) + " feature charts for " +
+                               std::to_string(feature_vertex.size()) + " features");
+    std::vector<int> next_of(feature_vertex.size(), -1);
+    std::fill(feature_of.begin(), feature_of.end(), -1);
+    for (std::size_t i = feature_vertex.size(); i-- > 0;) {
+        next_of[i] = feature_of[feature_vertex[i]];
+        feature_of[feature_vertex[i]] = int(i);
     }
     std::vector<char> seen(feature_vertex.size(), 0);
     for (int f = 0; f < nf; ++f)
-        for (int k = 0; k < 3; ++k) {
-            const int i = feature_of[m.faces[f][k]];
-            if (i < 0) continue;
-            seen[i] = 1;
-            const double e = (tm.uvs[tm.uv_faces[f][k]] - feature_uv[i]).norm();
-            if (!(e <= c.feature_max_error)) {  // also catches NaN
-                c.feature_max_error = std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
-                c.worst_feature = int(i);
+        for (int k = 0; k < 3; ++k)
+            for (int i = feature_of[m.faces[f][k]]; i >= 0; i = next_of[i]) {
+                if (!occurrence_chart.empty() && occurrence_chart[i] >= 0 &&
+                    occurrence_chart[i] != (tm.chart.empty() ? 0 : tm.chart[f]))
+                    continue;
+                seen[i] = 1;
+                const double e = (tm.uvs[tm.uv_faces[f][k]] - feature_uv[i]).norm();
+                if (!(e <= c.feature_max_error)) {  // also catches NaN
+                    c.feature_max_error = std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
+                    c.worst_feature = int(i);
+                }
             }
-        }
     for (std::size_t i = 0; i < seen.size(); ++i)
         if (!seen[i])
             throw BadInput("", "feature " + std::to_string(i) + ": vertex " + std::to_string(feature_vertex[i]) +
-                                   " is used by no face");
+                                   " is used by no face" +
+                                   (occurrence_chart.empty() ? std::string() : " of chart " + std::to_string(occurrence_chart[i])));
 
     // UV border: canonical UV vertices, edges of exactly one UV face. Built from per-vertex
     // lists rather than hash maps of keys: on a million triangles the hashing was most of the
@@ -271,18 +288,22 @@ Certificate certify(const TexturedMesh& tm, const std::vector<int>& feature_vert
     for (int f = 0; f < nf; ++f)
         for (int k = 0; k < 3; ++k) corners[fill[m.faces[f][k]]++] = 3 * f + k;
     std::vector<Vec2> pos;
+    std::vector<int> pos_chart;  // the chart of each UV vertex
     std::vector<std::array<int, 3>> corner_id(nf);
+    // Corners in different charts are different UV vertices even where their UVs agree.
     auto uv_bits = [&](int corner) {
         const Vec2& p = tm.uvs[tm.uv_faces[corner / 3][corner % 3]];
-        return std::pair{bits(p.x()), bits(p.y())};
+        return std::tuple{tm.chart.empty() ? 0 : tm.chart[corner / 3], bits(p.x()), bits(p.y())};
     };
     for (int v = 0; v < nv; ++v) {
         // Corners of one mesh vertex with bitwise equal UVs are one UV vertex.
         auto begin = corners.begin() + first[v], end = corners.begin() + first[v + 1];
         std::sort(begin, end, [&](int a, int b) { return uv_bits(a) < uv_bits(b); });
         for (auto it = begin; it != end; ++it) {
-            if (it == begin || uv_bits(*it) != uv_bits(*(it - 1)))
+            if (it == begin || uv_bits(*it) != uv_bits(*(it - 1))) {
                 pos.push_back(tm.uvs[tm.uv_faces[*it / 3][*it % 3]]);
+                pos_chart.push_back(tm.chart.empty() ? 0 : tm.chart[*it / 3]);
+            }
             corner_id[*it / 3][*it % 3] = int(pos.size()) - 1;
         }
     }
@@ -327,7 +348,10 @@ Certificate certify(const TexturedMesh& tm, const std::vector<int>& feature_vert
         if (deg > 2) ++c.border_crossings;
     c.border_edges = int(border.size());
 
-    c.border_crossings += count_border_crossings(pos, border);
+    // Charts each have their own UV square (their own image): their borders are tested apart.
+    std::map<int, std::vector<std::array<int, 2>>> border_of_chart;
+    for (const auto& e : border) border_of_chart[pos_chart[e[0]]].push_back(e);
+    for (const auto& [chart, edges] : border_of_chart) c.border_crossings += count_border_crossings(pos, edges);
     c.border_simple = c.border_crossings == 0;
 
     if (options.distortion) c.distortion = measure_distortion(tm);

@@ -72,6 +72,10 @@ struct Certificate {
 /// Options of `certify`.
 struct CertifyOptions {
     bool distortion = true;  ///< compute the distortion measures (the validity part is always computed)
+    /// With several charts (issue 13), per feature entry the chart whose corners it is compared
+    /// with (a feature on a seam is one entry per chart, each with that chart's UV); -1 or empty:
+    /// every corner of the vertex.
+    std::vector<int> feature_chart;
 };
 
 /// Certifies the texture map `tm` with the features at vertices `feature_vertex` whose UVs must
@@ -79,8 +83,8 @@ struct CertifyOptions {
 /// Orientation: every UV triangle by the exact predicate; within each chart the majority sign is
 /// the chart's (a mirrored chart is allowed, a mix is not), the minority counts as flipped.
 /// Border: the UV border edges (edges of one UV face; corners of one mesh vertex with bitwise
-/// equal UVs count as one UV vertex, so files that repeat `vt` per face are read right) are
-/// tested pairwise with exact predicates after a box-intersection filter (O(n log n)); an edge
+/// equal UVs in one chart count as one UV vertex, so files that repeat `vt` per face are read
+/// right) are tested pairwise within each chart (charts have their own images) with exact predicates after a box-intersection filter (O(n log n)); an edge
 /// shared by more than two UV faces counts as a crossing.
 /// \pre feature_vertex.size() == feature_uv.size(); uv_faces has one entry per face.
 /// \throw BadInput if a feature vertex is out of range or used by no face, or uv_faces/chart

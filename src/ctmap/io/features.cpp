@@ -64,6 +64,9 @@ FeatureSet read_features(const std::string& path) {
 FeatureSet parse_features(const std::string& text, const std::string& path) {
     json doc = parse_json_document(text, path, "features file");
     if (!doc.is_object()) throw BadInput(path, "the features file must hold a JSON object with a \"features\" array");
+    if (doc.contains("charts"))
+        throw BadInput(path, "the file has \"charts\" (several images, issue 13): ctmap map reads it; this reader "
+                             "takes one chart (a \"features\" array)");
 
     FeatureSet out;
     out.path = path;

@@ -160,6 +160,22 @@ void require_disc(const MeshTopology& t, const std::string& file) {
     throw TopologyError(file, msg);
 }
 
+void require_manifold(const MeshTopology& t, const std::string& file) {
+    std::vector<std::string> problems;
+    if (t.non_manifold_edges)
+        problems.push_back(std::to_string(t.non_manifold_edges) + " non-manifold edge(s) (more than two faces)");
+    if (t.non_manifold_vertices)
+        problems.push_back(std::to_string(t.non_manifold_vertices) + " non-manifold vertex(es) (faces meet at a point)");
+    if (t.inconsistent_edges)
+        problems.push_back(std::to_string(t.inconsistent_edges) + " edge(s) between oppositely oriented faces");
+    if (t.isolated_vertices) problems.push_back(std::to_string(t.isolated_vertices) + " isolated vertex(es) used by no face");
+    if (t.degenerate_faces) problems.push_back(std::to_string(t.degenerate_faces) + " degenerate face(s) (zero area)");
+    if (problems.empty()) return;
+    std::string msg = "the mesh is not a clean oriented manifold: ";
+    for (std::size_t i = 0; i < problems.size(); ++i) msg += (i ? "; " : "") + problems[i];
+    throw TopologyError(file, msg);
+}
+
 std::string topology_to_json(const MeshTopology& t) {
     nlohmann::ordered_json j;
     j["vertices"] = t.vertices;

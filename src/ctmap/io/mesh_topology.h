@@ -36,6 +36,11 @@ MeshTopology compute_topology(const TriMesh& mesh);
 /// \throw TopologyError naming `file` and every problem found (and what to do about it).
 void require_disc(const MeshTopology& topo, const std::string& file);
 
+/// Checks that `mesh` is a consistently oriented manifold with no degenerate face or isolated
+/// vertex, of any genus and with any number of border loops (several charts, issue 13).
+/// \throw TopologyError naming `file` and every problem found.
+void require_manifold(const MeshTopology& topo, const std::string& file);
+
 /// The report as JSON text with the keys of DESIGN/issue 2 (`vertices`, `faces`, ...).
 std::string topology_to_json(const MeshTopology& topo);
 

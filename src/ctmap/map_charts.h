@@ -1,0 +1,69 @@
+#pragma once
+/// \file map_charts.h
+/// Constrained texture mapping with several charts (issue 13; paper §3, Figs. 5-7): each chart
+/// has its own image; the mesh is cut along the charts' borders (seams) into one disc per chart,
+/// each disc goes through `map_texture`, and the charts come back together as one mesh with UVs
+/// per face corner, a seam vertex carrying one UV per chart.
+#include <string>
+#include <vector>
+
+#include "ctmap/cut/chart_regions.h"
+#include "ctmap/map_texture.h"
+
+namespace ctmap {
+
+/// One chart for `map_charts`: its features with their UVs in this chart (DESIGN §3) and its
+/// border features' names in order around its image polygon (either direction). A feature in
+/// several charts has the same `vertex` or `point` in each.
+struct ChartInput {
+    std::string name;
+    std::vector<MapFeature> features;
+    std::vector<std::string> border;  ///< empty only for a lone chart bounded by the mesh border
+};
+
+/// One chart's map.
+struct ChartMap {
+    std::string name;
+    MapResult result;         ///< the map of the chart's region (`result.cut.mesh` is the region, refined)
+    std::vector<int> vertex;  ///< per vertex of result.cut.mesh, its vertex in ChartsResult::textured.mesh
+    std::vector<int> faces;   ///< the faces of ChartsResult::textured.mesh that are this chart's
+};
+
+/// A feature's place in one chart: feature occurrences (feature, chart, UV), so that a seam
+/// feature has one UV per chart.
+struct FeatureOccurrence {
+    std::string name;
+    int chart = 0;
+    int vertex = -1;  ///< of ChartsResult::textured.mesh
+    Vec2 uv{0, 0};
+};
+
+/// The charts' maps together, certified.
+struct ChartsResult {
+    /// The whole mesh: its first vertices are the input's, in order (DESIGN §3), then the point
+    /// features, then what each chart's cut inserted; UVs per face corner, a chart id per face,
+    /// faces grouped by chart and, within a chart, by patch.
+    TexturedMesh textured;
+    std::vector<ChartMap> charts;
+    std::vector<FeatureOccurrence> occurrences;
+    std::vector<std::vector<int>> seams;  ///< the seam pieces as vertex paths of textured.mesh
+    Certificate certificate;              ///< of the whole map, per chart (certify's feature_chart)
+    MapTimings timings_ms;                ///< summed over the charts, plus the seams in `paths`
+
+    /// The occurrences as certify's arguments.
+    std::vector<int> occurrence_vertices() const;
+    std::vector<Vec2> occurrence_uvs() const;
+    std::vector<int> occurrence_charts() const;
+};
+
+/// Maps `mesh` with several charts (paper §3): the seams first (cut/chart_regions.h), then each
+/// chart's region by `map_texture` with `options`, then the whole certified: every chart one
+/// orientation, every occurrence exact, every chart's UV border simple.
+/// \pre `mesh` is a consistently oriented manifold (closed, with borders, of any genus); every
+///      face lies in a chart's region (the automatic map of the rest is not built yet).
+/// \throw BadInput naming the charts and features (chart_regions' rules, map_texture's per
+///        chart, a feature given at different places in two charts, faces in no chart);
+///        TopologyError for a non-manifold mesh; InternalError if the map fails its certificate.
+ChartsResult map_charts(const TriMesh& mesh, const std::vector<ChartInput>& charts, const MapOptions& options = {});
+
+}  // namespace ctmap

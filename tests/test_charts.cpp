@@ -1,0 +1,67 @@
+// Issue 13: several charts on one mesh (paper §3). Every map is certified again here, per chart.
+#include <gtest/gtest.h>
+
+#include "chart_cases.h"
+#include "ctmap/border_loop.h"
+#include "ctmap/io/read_mesh.h"
+#include "test_support.h"
+
+namespace ctmap::test {
+namespace {
+
+/// The checks every charts map must pass, recomputed from the result: the certificate (each
+/// chart one orientation, every occurrence bitwise exact, each chart's border simple), every
+/// face in a chart, the input's vertices first and unmoved, and a seam vertex with one UV per chart.
+void expect_valid_charts_map(const TriMesh& input, const std::vector<ChartInput>& charts, const ChartsResult& r) {
+    const TexturedMesh& tm = r.textured;
+    CertifyOptions copt;
+    copt.feature_chart = r.occurrence_charts();
+    const Certificate c = certify(tm, r.occurrence_vertices(), r.occurrence_uvs(), copt);
+    EXPECT_TRUE(c.valid) << c.flipped << " flipped, " << c.degenerate << " degenerate, feature error "
+                         << c.feature_max_error << ", border crossings " << c.border_crossings;
+    EXPECT_EQ(c.flipped, 0);
+    EXPECT_EQ(c.feature_max_error, 0.0);
+    ASSERT_EQ(tm.chart.size(), tm.mesh.faces.size());
+    for (int ch : tm.chart) ASSERT_TRUE(ch >= 0 && ch < int(charts.size()));
+    for (int v = 0; v < input.num_vertices(); ++v) ASSERT_EQ(tm.mesh.positions[v], input.positions[v]);
+    // Every occurrence: its UV is the chart's constraint, bitwise, at every corner in that chart.
+    std::size_t k = 0;
+    for (std::size_t ci = 0; ci < charts.size(); ++ci)
+        for (const MapFeature& f : charts[ci].features) {
+            ASSERT_LT(k, r.occurrences.size());
+            const FeatureOccurrence& o = r.occurrences[k++];
+            EXPECT_EQ(o.name, f.name);
+            EXPECT_EQ(o.chart, int(ci));
+            EXPECT_EQ(o.uv, f.uv);
+            int corners = 0;
+            for (std::size_t face = 0; face < tm.mesh.faces.size(); ++face)
+                for (int j = 0; j < 3; ++j)
+                    if (tm.mesh.faces[face][j] == o.vertex && tm.chart[face] == o.chart) {
+                        EXPECT_EQ(tm.uvs[tm.uv_faces[face][j]], f.uv) << f.name << " in chart " << ci;
+                        ++corners;
+                    }
+            EXPECT_GT(corners, 0) << f.name << " has no corner in chart " << ci;
+        }
+    // The 3D surface is the input's: same area to 1e-9 (vertices are inserted on it, never moved).
+    auto area = [](const TriMesh& m) {
+        double a = 0;
+        for (const Tri& t : m.faces)
+            a += 0.5 * (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]).norm();
+        return a;
+    };
+    EXPECT_NEAR(area(tm.mesh), area(input), 1e-9 * area(input));
+}
+
+TEST(Charts, TwoChartsOnTheClosedCow) {
+    const TriMesh mesh = read_mesh(data("meshes/cow.off"));
+    std::mt19937 rng(7);
+    const TwoChartCase cc = two_chart_case(mesh, 8, 6, 1.0, rng);
+    const ChartsResult r = map_charts(mesh, cc.charts);
+    expect_valid_charts_map(mesh, cc.charts, r);
+    std::printf("cow: %d faces in chart 0, %d in chart 1, %zu seam pieces, symmetric Dirichlet %.3f\n",
+                int(r.charts[0].faces.size()), int(r.charts[1].faces.size()), r.seams.size(),
+                r.certificate.distortion.symmetric_dirichlet / 4);
+}
+
+}  // namespace
+}  // namespace ctmap::test
