@@ -5,6 +5,7 @@ set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libcgal-demo  # CGAL's meshes: the closed and higher-genus ones of the charts tests (scripts/fetch_data.sh)
   # libopenblas0-pthread: an optimised BLAS for CHOLMOD's supernodal factorisation (refine/isometric)
   libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev libstb-dev libtinygltf-dev libexif-dev libcpp-httplib-dev libsuitesparse-dev libopenblas0-pthread
   libgtest-dev libbenchmark-dev gnuplot-nox

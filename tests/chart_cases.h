@@ -37,7 +37,9 @@ inline TwoChartCase two_chart_case(const TriMesh& mesh, int seam_count, int inte
     const ChartRegions regions = chart_regions(mesh, outlines);
     for (int c = 0; c < 2; ++c) {
         const ChartRegion& r = regions.charts[c];
-        const std::vector<Vec2> tutte = tutte_map(r.mesh);
+        // Tutte's map squeezes a leg or an ear into a sliver of the disc; spread by area, the
+        // image points ask for a map of moderate distortion, as a photo would.
+        const std::vector<Vec2> tutte = spread_radially(r.mesh, tutte_map(r.mesh));
         std::vector<int> local(mesh.num_vertices(), -1);
         for (std::size_t v = 0; v < r.global.size(); ++v) local[r.global[v]] = int(v);
         // Border features: the seam; interior ones at random, kept inside the border polygon.

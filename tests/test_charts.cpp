@@ -65,3 +65,35 @@ TEST(Charts, TwoChartsOnTheClosedCow) {
 
 }  // namespace
 }  // namespace ctmap::test
+
+namespace ctmap::test {
+namespace {
+
+/// Issue 13 must-show 4: random feasible two-chart sets on closed meshes, every one certified.
+TEST(Charts, RandomTwoChartSetsOnClosedMeshesAreAllCertified) {
+    const int per_mesh = std::getenv("CTMAP_CHART_SETS") ? std::atoi(std::getenv("CTMAP_CHART_SETS")) : 34;
+    int total = 0, certified = 0;
+    for (const char* name : {"cow", "bull", "homer"}) {
+        const TriMesh mesh = read_mesh(data(std::string("meshes/") + name + ".off"));
+        std::mt19937 rng(13);
+        int ok = 0;
+        double worst = 0;
+        for (int s = 0; s < per_mesh; ++s) {
+            const int seam = 4 + int(rng() % 9), interior = int(rng() % 16);
+            const double strength = 3.0 * (rng() % 1000) / 1000.0;
+            const TwoChartCase cc = two_chart_case(mesh, seam, interior, strength, rng, s % 3 == 2);
+            SCOPED_TRACE(std::string(name) + " set " + std::to_string(s));
+            const ChartsResult r = map_charts(mesh, cc.charts);
+            expect_valid_charts_map(mesh, cc.charts, r);
+            ok += r.certificate.valid && !::testing::Test::HasFailure();
+            for (const ChartMap& cm : r.charts) worst = std::max(worst, cm.result.certificate.distortion.symmetric_dirichlet / 4);
+        }
+        std::printf("%s: %d of %d two-chart sets certified (worst chart's symmetric Dirichlet %.2f)\n", name, ok, per_mesh, worst);
+        total += per_mesh, certified += ok;
+    }
+    std::printf("%d of %d random two-chart sets certified\n", certified, total);
+    EXPECT_EQ(certified, total);
+}
+
+}  // namespace
+}  // namespace ctmap::test

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <string>
 #include <vector>
 
 namespace ctmap {
@@ -44,6 +45,13 @@ struct TexturedMesh {
         t.uvs = std::move(vertex_uvs);
         return t;
     }
+};
+
+/// What a chart is textured with in OBJ and GLB output (issue 13): material `name` (letters,
+/// digits, '_' and '-' only) with the image `image` (a path; empty: untextured).
+struct ChartMaterial {
+    std::string name;
+    std::string image;
 };
 
 }  // namespace ctmap

@@ -206,21 +206,34 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
         for (int v : mesh.faces[f]) a_face[v] = f;
     std::vector<int> chart_of_component(components, -1);
     out.face_chart.assign(nf, -1);
-    for (std::size_t c = 0; c < charts.size(); ++c) {
+    // Charts with interior features first: they decide their side; a chart without any then
+    // takes the side its image's orientation says, or the other one if that is taken (a mirrored
+    // chart of a closed mesh's second half).
+    std::vector<std::size_t> order;
+    for (int pass = 0; pass < 2; ++pass)
+        for (std::size_t c = 0; c < charts.size(); ++c)
+            if (charts[c].interior.empty() == (pass == 1)) order.push_back(c);
+    for (std::size_t c : order) {
         const ChartOutline& ch = charts[c];
         const std::vector<int>& loop = loops[c];
         const int left = adj.left(loop[0], loop[1]), right = adj.left(loop[1], loop[0]);
+        const int left_side = left >= 0 ? component[left] : -1, right_side = right >= 0 ? component[right] : -1;
         std::set<int> sides;
         for (int v : ch.interior) sides.insert(component[a_face[v]]);  // v is on no seam: its faces are one side
         if (sides.size() > 1)
             throw BadInput("", "chart " + named(ch.name) + ": its interior features lie on both sides of its border "
                                    "on the mesh; each chart's interior features must be inside its border");
-        const int side = !sides.empty() ? *sides.begin()
-                         : ch.image_ccw ? (left >= 0 ? component[left] : -1)
-                                        : (right >= 0 ? component[right] : -1);
-        if (side < 0 || ((left < 0 || side != component[left]) && (right < 0 || side != component[right])))
-            throw BadInput("", "chart " + named(ch.name) + ": its interior features are not beside its border on the "
-                                   "mesh; each chart's interior features must be inside its border");
+        int side = -1;
+        if (!sides.empty()) {
+            side = *sides.begin();
+            if (side != left_side && side != right_side)
+                throw BadInput("", "chart " + named(ch.name) + ": its interior features are not beside its border on "
+                                       "the mesh; each chart's interior features must be inside its border");
+        } else {
+            const int preferred = ch.image_ccw ? left_side : right_side, other = ch.image_ccw ? right_side : left_side;
+            side = preferred >= 0 && chart_of_component[preferred] < 0 ? preferred : other >= 0 ? other : preferred;
+        }
+        if (side < 0) throw BadInput("", "chart " + named(ch.name) + ": its border has no face beside it");
         if (chart_of_component[side] >= 0)
             throw BadInput("", "charts " + named(charts[chart_of_component[side]].name) + " and " + named(ch.name) +
                                    " both take the same region of the mesh");

@@ -3,6 +3,7 @@
 #include <tiny_gltf.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -127,6 +128,53 @@ int add_vec3(tinygltf::Model& m, const std::vector<float>& data) {
 }  // namespace
 
 void write_glb(const TexturedMesh& tm, const std::string& path, const std::string& image, OutputSet& outputs) {
+    const std::vector<ChartMaterial> one{{"ctmap_texture", image}};
+    if (std::any_of(tm.chart.begin(), tm.chart.end(), [](int c) { return c != 0; })) {
+        TexturedMesh single = tm;  // one image for every chart (e.g. an OBJ read with several materials)
+        single.chart.assign(single.mesh.faces.size(), 0);
+        return write_glb(single, path, one, outputs);
+    }
+    write_glb(tm, path, one, outputs);
+}
+
+namespace {
+
+/// The image file `image` as a glTF image of `m` (its bytes in the buffer). A JPEG turned by its
+/// EXIF orientation is embedded upright as PNG: the UVs refer to the upright picture, and viewers
+/// do not all honour EXIF inside glTF.
+int add_image(tinygltf::Model& m, const std::string& image) {
+    std::ifstream in(image, std::ios::binary);
+    if (!in) throw BadInput(image, "cannot read the texture image");
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (exif_orientation(std::string(bytes.begin(), bytes.end())) != 1) {
+        const std::string png = encode_png(read_image(image));
+        bytes.assign(png.begin(), png.end());
+    }
+    tinygltf::Image img;
+    img.mimeType = mime_of(image, bytes);
+    img.name = std::filesystem::path(image).stem().string();
+    img.bufferView = add_view(m, append(m.buffers[0].data, bytes), bytes.size(), 0);
+    m.images.push_back(img);
+    if (m.samplers.empty()) {
+        tinygltf::Sampler s;
+        s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+        s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+        s.wrapS = s.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+        m.samplers.push_back(s);
+    }
+    tinygltf::Texture tex;
+    tex.source = int(m.images.size()) - 1;
+    tex.sampler = 0;
+    m.textures.push_back(tex);
+    return int(m.textures.size()) - 1;
+}
+
+}  // namespace
+
+void write_glb(const TexturedMesh& tm, const std::string& path, const std::vector<ChartMaterial>& materials,
+               OutputSet& outputs) {
+    for (int c : tm.chart)
+        if (c < 0 || c >= int(materials.size())) throw InternalError(path + ": chart " + std::to_string(c) + " has no material");
     const bool has_uv = !tm.uvs.empty();
     const GlbVertices vertices = split_vertices(tm);
     const std::vector<std::uint32_t>& idx = vertices.indices;
@@ -149,60 +197,50 @@ void write_glb(const TexturedMesh& tm, const std::string& path, const std::strin
     m.buffers.emplace_back();
     auto& buf = m.buffers[0].data;
 
-    tinygltf::Primitive prim;
-    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    // One primitive per chart (issue 13), all on the same vertex attributes.
+    tinygltf::Primitive shared;
+    shared.mode = TINYGLTF_MODE_TRIANGLES;
     const int pos_acc = add_accessor(m, add_view(m, append(buf, pos), pos.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                                      TINYGLTF_COMPONENT_TYPE_FLOAT, pos.size() / 3, TINYGLTF_TYPE_VEC3);
     m.accessors[pos_acc].minValues = {double(box.min().x()), double(box.min().y()), double(box.min().z())};
     m.accessors[pos_acc].maxValues = {double(box.max().x()), double(box.max().y()), double(box.max().z())};
-    prim.attributes["POSITION"] = pos_acc;
-    prim.attributes["NORMAL"] =  // smooth shading in three.js and Blender
+    shared.attributes["POSITION"] = pos_acc;
+    shared.attributes["NORMAL"] =  // smooth shading in three.js and Blender
         add_accessor(m, add_view(m, append(buf, nrm), nrm.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                      TINYGLTF_COMPONENT_TYPE_FLOAT, nrm.size() / 3, TINYGLTF_TYPE_VEC3);
     if (has_uv)
-        prim.attributes["TEXCOORD_0"] =
+        shared.attributes["TEXCOORD_0"] =
             add_accessor(m, add_view(m, append(buf, uv), uv.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                          TINYGLTF_COMPONENT_TYPE_FLOAT, uv.size() / 2, TINYGLTF_TYPE_VEC2);
-    prim.indices = add_accessor(m, add_view(m, append(buf, idx), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, idx.size(), TINYGLTF_TYPE_SCALAR);
-
-    tinygltf::Material mat;
-    mat.name = "ctmap_texture";
-    mat.pbrMetallicRoughness.metallicFactor = 0.0;
-    mat.pbrMetallicRoughness.roughnessFactor = 1.0;
-    mat.doubleSided = true;
-    if (!image.empty() && has_uv) {
-        std::ifstream in(image, std::ios::binary);
-        if (!in) throw BadInput(image, "cannot read the texture image");
-        std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        // A JPEG turned by its EXIF orientation: the UVs refer to the upright picture, which is
-        // embedded as PNG (viewers do not all honour EXIF inside glTF).
-        if (exif_orientation(std::string(bytes.begin(), bytes.end())) != 1) {
-            const std::string png = encode_png(read_image(image));
-            bytes.assign(png.begin(), png.end());
-        }
-        tinygltf::Image img;
-        img.mimeType = mime_of(image, bytes);
-        img.name = std::filesystem::path(image).stem().string();
-        img.bufferView = add_view(m, append(buf, bytes), bytes.size(), 0);
-        m.images.push_back(img);
-        tinygltf::Sampler s;
-        s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-        s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-        s.wrapS = s.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-        m.samplers.push_back(s);
-        tinygltf::Texture tex;
-        tex.source = 0;
-        tex.sampler = 0;
-        m.textures.push_back(tex);
-        mat.pbrMetallicRoughness.baseColorTexture.index = 0;
-    }
-    m.materials.push_back(mat);
-    prim.material = 0;
 
     tinygltf::Mesh mesh;
     mesh.name = "ctmap";
-    mesh.primitives.push_back(prim);
+    std::map<std::string, int> texture_of;  // image path -> texture (charts may share an image)
+    const int charts = tm.chart.size() == tm.mesh.faces.size() ? int(materials.size()) : 1;
+    for (int c = 0; c < charts; ++c) {
+        std::vector<std::uint32_t> chart_idx;
+        if (charts == 1) chart_idx = idx;
+        else
+            for (std::size_t f = 0; f < tm.mesh.faces.size(); ++f)
+                if (tm.chart[f] == c) chart_idx.insert(chart_idx.end(), idx.begin() + 3 * f, idx.begin() + 3 * f + 3);
+        if (chart_idx.empty()) continue;
+        tinygltf::Primitive prim = shared;
+        prim.indices = add_accessor(m, add_view(m, append(buf, chart_idx), chart_idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, chart_idx.size(), TINYGLTF_TYPE_SCALAR);
+        tinygltf::Material mat;
+        mat.name = materials[c].name;
+        mat.pbrMetallicRoughness.metallicFactor = 0.0;
+        mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+        mat.doubleSided = true;
+        if (!materials[c].image.empty() && has_uv) {
+            auto it = texture_of.find(materials[c].image);
+            if (it == texture_of.end()) it = texture_of.emplace(materials[c].image, add_image(m, materials[c].image)).first;
+            mat.pbrMetallicRoughness.baseColorTexture.index = it->second;
+        }
+        m.materials.push_back(mat);
+        prim.material = int(m.materials.size()) - 1;
+        mesh.primitives.push_back(prim);
+    }
     write_single_mesh(m, mesh, path, outputs);
 }
 
@@ -354,29 +392,47 @@ TexturedMesh read_glb(const std::string& path, GlbTexture* texture) {
                                             : gltf.LoadASCIIFromFile(&m, &err, &warn, path);
     if (!ok) throw BadInput(path, "not a readable glTF file: " + err);
     if (m.meshes.empty() || m.meshes[0].primitives.empty()) throw BadInput(path, "no mesh in the glTF file");
-    const tinygltf::Primitive& p = m.meshes[0].primitives[0];
-    if (!p.attributes.count("POSITION")) throw BadInput(path, "the primitive has no POSITION");
-    const auto pos = read_accessor<float>(m, p.attributes.at("POSITION"), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, path);
-    const auto idx = read_accessor<std::uint32_t>(m, p.indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, path);
+    // Every primitive of the first mesh, primitive k as chart k (ctmap writes one per chart,
+    // issue 13, on shared vertex attributes: an attribute accessor is read once).
     TexturedMesh tm;
-    for (std::size_t i = 0; i < pos.size(); i += 3) {
-        if (!std::isfinite(pos[i]) || !std::isfinite(pos[i + 1]) || !std::isfinite(pos[i + 2]))
-            throw BadInput(path, "vertex " + std::to_string(i / 3) + " has a non-finite coordinate (NaN or infinity)");
-        tm.mesh.positions.emplace_back(pos[i], pos[i + 1], pos[i + 2]);
+    std::map<int, std::pair<int, int>> base_of;  // POSITION accessor -> its first vertex in tm, its count
+    bool any_uv = false, any_plain = false;
+    for (std::size_t k = 0; k < m.meshes[0].primitives.size(); ++k) {
+        const tinygltf::Primitive& p = m.meshes[0].primitives[k];
+        if (!p.attributes.count("POSITION")) throw BadInput(path, "a primitive has no POSITION");
+        const int position_accessor = p.attributes.at("POSITION");
+        auto [it, fresh] = base_of.emplace(position_accessor, std::make_pair(tm.mesh.num_vertices(), 0));
+        const int base = it->second.first;
+        if (fresh) {
+            const auto pos = read_accessor<float>(m, position_accessor, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, path);
+            for (std::size_t i = 0; i < pos.size(); i += 3) {
+                if (!std::isfinite(pos[i]) || !std::isfinite(pos[i + 1]) || !std::isfinite(pos[i + 2]))
+                    throw BadInput(path, "vertex " + std::to_string(i / 3) + " has a non-finite coordinate (NaN or infinity)");
+                tm.mesh.positions.emplace_back(pos[i], pos[i + 1], pos[i + 2]);
+            }
+            if (p.attributes.count("TEXCOORD_0")) {
+                const auto uv = read_accessor<float>(m, p.attributes.at("TEXCOORD_0"), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                                     TINYGLTF_TYPE_VEC2, path);
+                if (uv.size() / 2 != pos.size() / 3) throw BadInput(path, "TEXCOORD_0 and POSITION have different counts");
+                for (std::size_t i = 0; i < uv.size(); i += 2) tm.uvs.emplace_back(uv[i], 1.0 - double(uv[i + 1]));
+                any_uv = true;
+            } else {
+                any_plain = true;
+            }
+        }
+        if (fresh) it->second.second = tm.mesh.num_vertices() - base;
+        const int count = it->second.second;
+        const auto idx = read_accessor<std::uint32_t>(m, p.indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, path);
+        for (std::size_t i = 0; i + 2 < idx.size(); i += 3) {
+            for (std::uint32_t c = 0; c < 3; ++c)
+                if (idx[i + c] >= std::uint32_t(count))
+                    throw BadInput(path, "index out of range");
+            tm.mesh.faces.push_back({base + int(idx[i]), base + int(idx[i + 1]), base + int(idx[i + 2])});
+            tm.chart.push_back(int(k));
+        }
     }
-    for (std::size_t i = 0; i + 2 < idx.size(); i += 3) {
-        Tri t{int(idx[i]), int(idx[i + 1]), int(idx[i + 2])};
-        for (std::uint32_t k = 0; k < 3; ++k)
-            if (idx[i + k] >= std::uint32_t(tm.mesh.num_vertices())) throw BadInput(path, "index out of range");
-        tm.mesh.faces.push_back(t);
-    }
-    if (p.attributes.count("TEXCOORD_0")) {
-        const auto uv = read_accessor<float>(m, p.attributes.at("TEXCOORD_0"), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, path);
-        if (uv.size() / 2 != pos.size() / 3) throw BadInput(path, "TEXCOORD_0 and POSITION have different counts");
-        for (std::size_t i = 0; i < uv.size(); i += 2) tm.uvs.emplace_back(uv[i], 1.0 - double(uv[i + 1]));
-        tm.uv_faces = tm.mesh.faces;
-    }
-    tm.chart.assign(tm.mesh.faces.size(), 0);
+    if (any_uv && any_plain) throw BadInput(path, "some primitives have texture coordinates and some do not");
+    if (any_uv) tm.uv_faces = tm.mesh.faces;
     if (texture) *texture = embedded_texture(m, path);
     return tm;
 }

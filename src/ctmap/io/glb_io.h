@@ -19,6 +19,12 @@ namespace ctmap {
 ///        in a 32-bit float; InternalError if the file cannot be written.
 void write_glb(const TexturedMesh& mesh, const std::string& path, const std::string& image, OutputSet& outputs);
 
+/// Same with one material per chart (issue 13): one glTF primitive per chart on shared vertex
+/// attributes, chart c (TexturedMesh::chart) with `materials[c]` and its image embedded (charts
+/// sharing an image share one copy). \pre every chart id indexes `materials`.
+void write_glb(const TexturedMesh& mesh, const std::string& path, const std::vector<ChartMaterial>& materials,
+               OutputSet& outputs);
+
 /// Same, committed at once.
 void write_glb(const TexturedMesh& mesh, const std::string& path, const std::string& image = "");
 

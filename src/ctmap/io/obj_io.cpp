@@ -1,5 +1,6 @@
 #include "ctmap/io/obj_io.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -47,6 +48,20 @@ void check_or_throw(std::ofstream& os, const std::string& path) {
 }  // namespace
 
 void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::string& image, OutputSet& outputs) {
+    const std::vector<ChartMaterial> one{{"ctmap_texture", image}};
+    if (std::any_of(tm.chart.begin(), tm.chart.end(), [](int c) { return c != 0; })) {
+        TexturedMesh single = tm;  // one image for every chart (e.g. an OBJ read with several materials)
+        single.chart.assign(single.mesh.faces.size(), 0);
+        return write_obj(single, obj_path, one, outputs);
+    }
+    write_obj(tm, obj_path, one, outputs);
+}
+
+void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::vector<ChartMaterial>& materials,
+               OutputSet& outputs) {
+    for (int c : tm.chart)
+        if (c < 0 || c >= int(materials.size()))
+            throw InternalError(obj_path + ": chart " + std::to_string(c) + " has no material");
     const bool has_uv = !tm.uvs.empty();
     const fs::path obj(obj_path);
     const std::string mtl_name = obj.stem().string() + ".mtl";
@@ -67,9 +82,11 @@ void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::s
         s += '\n';
     }
     for (const Vec3& n : vertex_normals(tm.mesh)) put_line(s, "vn ", n);  // smooth shading: vn i is vertex i's normal
-    s += "usemtl ctmap_texture\n";
     const bool groups = tm.patch.size() == tm.mesh.faces.size();
+    const bool charts = tm.chart.size() == tm.mesh.faces.size();
+    if (!charts) s += "usemtl " + materials.at(0).name + "\n";
     for (std::size_t f = 0; f < tm.mesh.faces.size(); ++f) {
+        if (charts && (f == 0 || tm.chart[f] != tm.chart[f - 1])) s += "usemtl " + materials[tm.chart[f]].name + '\n';
         if (groups && (f == 0 || tm.patch[f] != tm.patch[f - 1])) s += "g patch_" + std::to_string(tm.patch[f]) + '\n';
         s += 'f';
         for (int k = 0; k < 3; ++k) {
@@ -87,8 +104,11 @@ void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::s
     }
     {
         std::ofstream os(mtl_tmp, std::ios::binary);
-        os << "# written by ctmap\nnewmtl ctmap_texture\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nillum 1\n";
-        if (!image.empty()) os << "map_Kd " << relative_to(image, obj_path) << "\n";
+        os << "# written by ctmap\n";
+        for (std::size_t c = 0; c < materials.size(); ++c) {
+            os << (c ? "\n" : "") << "newmtl " << materials[c].name << "\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nillum 1\n";
+            if (!materials[c].image.empty()) os << "map_Kd " << relative_to(materials[c].image, obj_path) << "\n";
+        }
         check_or_throw(os, mtl_path);
     }
 }
@@ -130,7 +150,7 @@ int resolve_index(long long i, std::size_t count, const char* what, const LineRe
 
 }  // namespace
 
-TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
+TexturedMesh read_textured_obj(const std::string& path, std::string* image, std::vector<ChartMaterial>* materials) {
     check_input_file(path, "OBJ file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw BadInput(path, "cannot be opened for reading");
@@ -142,6 +162,8 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
     LineReader r{path};
     bool any_uv_face = false, any_plain_face = false;
     int group_patch = -1;           // from `g patch_<id>` (ctmap's own files)
+    std::vector<std::string> used_materials;  // in order of first use: a chart each (issue 13)
+    int chart = 0;
     bool all_faces_grouped = true;
     while (std::getline(in, line)) {
         ++r.line_no;
@@ -206,6 +228,7 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
                 tm.mesh.faces.push_back({vi[0], vi[k], vi[k + 1]});
                 tm.uv_faces.push_back({ti[0], ti[k], ti[k + 1]});
                 tm.patch.push_back(group_patch);
+                tm.chart.push_back(chart);
             }
             all_faces_grouped = all_faces_grouped && group_patch >= 0;
         } else if (starts("g")) {
@@ -217,6 +240,12 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
                 if (ecode != std::errc() || q != rest.data() + rest.size() || id < 0) id = -1;
             }
             group_patch = id;
+        } else if (starts("usemtl")) {
+            std::string rest(p + 6, end);
+            rest.erase(0, rest.find_first_not_of(" \t"));
+            const auto it = std::find(used_materials.begin(), used_materials.end(), rest);
+            chart = int(it - used_materials.begin());
+            if (it == used_materials.end()) used_materials.push_back(rest);
         } else if (starts("mtllib")) {
             std::string rest(p + 6, end);
             rest.erase(0, rest.find_first_not_of(" \t"));
@@ -231,23 +260,31 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image) {
         tm.uvs.clear();
     }
     if (!all_faces_grouped) tm.patch.clear();
-    tm.chart.assign(tm.mesh.faces.size(), 0);
-
-    if (image) {
-        image->clear();
+    if (used_materials.empty()) used_materials.push_back("");
+    if (materials) {
+        materials->clear();
+        for (const std::string& n : used_materials) materials->push_back({n, ""});
+    }
+    if (image || materials) {
+        if (image) image->clear();
         if (!mtllib.empty()) {
             const fs::path mtl = fs::path(path).parent_path() / mtllib;
             std::ifstream m(mtl);
-            std::string l;
+            std::string l, current;
             while (std::getline(m, l)) {
                 if (!l.empty() && l.back() == '\r') l.pop_back();
                 std::istringstream ls(l);
                 std::string kw;
                 ls >> kw;
+                if (kw == "newmtl") std::getline(ls >> std::ws, current);
                 if (kw == "map_Kd") {
                     std::string name;
                     std::getline(ls >> std::ws, name);
-                    *image = (mtl.parent_path() / name).lexically_normal().string();
+                    const std::string file = (mtl.parent_path() / name).lexically_normal().string();
+                    if (image) *image = file;
+                    if (materials)
+                        for (ChartMaterial& cm : *materials)
+                            if (cm.name == current) cm.image = file;
                 }
             }
         }

@@ -4,6 +4,7 @@
 /// (`f v/vt`), in OBJ's convention UV = (x / W, 1 - y / H), with the shortest decimal form that
 /// reads back to the same double, so a write-read round trip is bitwise exact.
 #include <string>
+#include <vector>
 
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/mesh.h"
@@ -17,6 +18,12 @@ namespace ctmap {
 /// \throw InternalError if a file cannot be written.
 void write_obj(const TexturedMesh& mesh, const std::string& obj_path, const std::string& image, OutputSet& outputs);
 
+/// Same with one material per chart (issue 13): faces of chart c (TexturedMesh::chart) use
+/// `materials[c]`, each with its own `map_Kd`.
+/// \pre every chart id indexes `materials`.
+void write_obj(const TexturedMesh& mesh, const std::string& obj_path, const std::vector<ChartMaterial>& materials,
+               OutputSet& outputs);
+
 /// Same, committed at once.
 void write_obj(const TexturedMesh& mesh, const std::string& obj_path, const std::string& image = "");
 
@@ -25,6 +32,10 @@ void write_obj(const TexturedMesh& mesh, const std::string& obj_path, const std:
 /// one is ctmap's own; it parses numbers with std::from_chars, which is correctly rounded.
 /// `mtllib`/`usemtl` are read only to return the material's `map_Kd` image path in `image`.
 /// \throw BadInput naming the file and line for malformed content or indices out of range.
-TexturedMesh read_textured_obj(const std::string& path, std::string* image = nullptr);
+/// `usemtl` names a chart (issue 13): faces after the n-th distinct material are chart n (all
+/// chart 0 without any); `materials`, if given, receives per chart its material name and the
+/// `map_Kd` image of the MTL file (empty when the MTL has none).
+TexturedMesh read_textured_obj(const std::string& path, std::string* image = nullptr,
+                               std::vector<ChartMaterial>* materials = nullptr);
 
 }  // namespace ctmap
