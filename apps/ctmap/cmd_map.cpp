@@ -11,8 +11,10 @@
 #include <sstream>
 
 #include "commands.h"
+#include "progress.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/atomic_file.h"
+#include "ctmap/io/chart_features.h"
 #include "ctmap/io/features.h"
 #include "ctmap/io/glb_io.h"
 #include "ctmap/io/image.h"
@@ -34,58 +36,6 @@ std::string fixed(double x, int digits) {
     os << std::fixed << std::setprecision(digits) << x;
     return os.str();
 }
-
-/// Progress on stderr. On a terminal: one line rewritten in place, cleared at the end. Elsewhere
-/// (a log of a long job): a line when a stage that ran longer than a second ends, and a line
-/// every 5 seconds within a long stage.
-class Progress {
-public:
-    using Clock = std::chrono::steady_clock;
-    Progress(bool enabled, bool terminal) : on_(enabled), terminal_(terminal) {}
-    ~Progress() { clear(); }
-    void operator()(const std::string& stage, int done, int total) {
-        if (!on_) return;
-        const auto now = Clock::now();
-        if (stage != stage_) {
-            finish(now);
-            stage_ = stage;
-            stage_start_ = last_line_ = now;
-        }
-        std::string line = "ctmap map: " + stage;
-        if (total > 0) line += " " + std::to_string(done) + "/" + std::to_string(total);
-        if (terminal_) {
-            std::fprintf(stderr, "\r%-60s", line.c_str());
-            shown_ = true;
-        } else if (seconds(last_line_, now) >= 5) {
-            std::fprintf(stderr, "%s (%.0f s)\n", line.c_str(), seconds(stage_start_, now));
-            last_line_ = now;
-        }
-        std::fflush(stderr);
-    }
-    /// Ends the last stage (its line, off a terminal) and clears the terminal's line.
-    void clear() {
-        finish(Clock::now());
-        stage_.clear();
-        if (!shown_) return;
-        std::fprintf(stderr, "\r%-60s\r", "");
-        std::fflush(stderr);
-        shown_ = false;
-    }
-
-private:
-    static double seconds(Clock::time_point a, Clock::time_point b) {
-        return std::chrono::duration<double>(b - a).count();
-    }
-    void finish(Clock::time_point now) {
-        if (!on_ || terminal_ || stage_.empty() || seconds(stage_start_, now) < 1) return;
-        std::fprintf(stderr, "ctmap map: %s done in %.1f s\n", stage_.c_str(), seconds(stage_start_, now));
-        std::fflush(stderr);
-    }
-    bool on_, terminal_;
-    bool shown_ = false;
-    std::string stage_;
-    Clock::time_point stage_start_, last_line_;
-};
 
 /// The first line of `ctmap map`'s output, printed as soon as the inputs are read.
 void print_map_header(const MapArgs& a, std::size_t features, const MapRun& run, std::ostream& os) {
@@ -116,14 +66,32 @@ TextureCopy texture_for_obj(const MapArgs& a, const std::string& image) {
     return t;
 }
 
-MapRun run_map(const MapArgs& a) {
-    using Clock = std::chrono::steady_clock;
-    const auto t0 = Clock::now();
+MapOptions map_options(const MapArgs& a) {
+    MapOptions options;
+    if (a.spacing > 0) options.cut.spacing_factor = a.spacing;
+    options.refine = a.refine;
+    options.auto_border = a.border == "auto";
+    options.refine_mode = a.refine_mode == "paper" ? RefineMode::paper : RefineMode::isometric;
+    options.isometric.border = a.border_mode == "fixed" ? BorderMode::fixed : BorderMode::free;
+    options.isometric.keep_in_box = a.border_mode != "unbounded";
+    options.isometric.max_iterations = a.iterations;
+    options.isometric.tolerance = a.tolerance;
+    options.snap = a.snap;
+    return options;
+}
+
+std::string mtl_path_of(const MapArgs& a) {
     if (fs::path(a.output).extension() != ".obj")
         throw BadInput(a.output, "the output must be an .obj file (its .mtl is written beside it)");
     if (!a.glb.empty() && fs::path(a.glb).extension() != ".glb")
         throw BadInput(a.glb, "--glb must name a .glb file");
-    const std::string mtl = (fs::path(a.output).parent_path() / (fs::path(a.output).stem().string() + ".mtl")).string();
+    return (fs::path(a.output).parent_path() / (fs::path(a.output).stem().string() + ".mtl")).string();
+}
+
+MapRun run_map(const MapArgs& a) {
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
+    const std::string mtl = mtl_path_of(a);
     // Before any work: no output overwrites an input or another output, and each can be created.
     check_outputs({{a.mesh, "the mesh"}, {a.features, "the features file"}, {a.image, "the image"}},
                   {{a.output, "the output (-o)"}, {mtl, "the output's material file"}, {a.glb, "--glb"},
@@ -142,16 +110,7 @@ MapRun run_map(const MapArgs& a) {
     if (!a.quiet) print_map_header(a, features.features.size(), run, std::cout);
     const double read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 
-    MapOptions options;
-    if (a.spacing > 0) options.cut.spacing_factor = a.spacing;
-    options.refine = a.refine;
-    options.auto_border = a.border == "auto";
-    options.refine_mode = a.refine_mode == "paper" ? RefineMode::paper : RefineMode::isometric;
-    options.isometric.border = a.border_mode == "fixed" ? BorderMode::fixed : BorderMode::free;
-    options.isometric.keep_in_box = a.border_mode != "unbounded";
-    options.isometric.max_iterations = a.iterations;
-    options.isometric.tolerance = a.tolerance;
-    options.snap = a.snap;
+    MapOptions options = map_options(a);
     Progress progress(!a.quiet, isatty(fileno(stderr)));
     options.progress = [&](const std::string& stage, int done, int total) { progress(stage, done, total); };
     run.result = naming_file(a.features,
@@ -276,6 +235,11 @@ Command add_map_command(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     sub->add_flag("-q,--quiet", args->quiet, "print nothing on success (no header, progress or summary)");
     return {sub, [args] {
+                if (has_charts(read_input_file(args->features, "features file"), args->features)) {
+                    const ChartsRun run = run_map_charts(*args);
+                    if (!args->quiet) print_charts_summary(*args, run, std::cout);
+                    return kExitOk;
+                }
                 const MapRun run = run_map(*args);
                 if (!args->quiet) print_map_summary(*args, run, std::cout);
                 return kExitOk;

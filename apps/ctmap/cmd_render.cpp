@@ -128,6 +128,9 @@ Command add_render_command(CLI::App& app) {
         ->capture_default_str();
     sub->add_option("--features", args->files.features, "features.json: markers, and the triangulation (README, features.json)");
     sub->add_option("--image", args->files.image, "texture image; overrides the material's map_Kd");
+    sub->add_option("--chart", args->files.chart,
+                    "a map with several charts: draw only this chart (its name, or its material chart_<name>) with "
+                    "its own image; without it, --mode textured draws every chart with its own image");
     sub->add_flag("--flat", args->flat, "no shading: the texture's own colours");
     sub->add_flag("--whole-image", args->whole_image, "uv, triangulation: the whole image, not just around the map");
     sub->add_flag("-q,--quiet", args->quiet, "print nothing on success");

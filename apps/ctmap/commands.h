@@ -4,11 +4,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include <array>
 #include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "ctmap/map_charts.h"
 #include "ctmap/map_texture.h"
 
 namespace ctmap::cli {
@@ -63,6 +65,27 @@ std::string auto_border_line(const AutoBorder& added, bool kept_fixed);
 
 /// The short human summary of a map.
 void print_map_summary(const MapArgs& args, const MapRun& run, std::ostream& os);
+
+/// The pipeline's options as `ctmap map`'s arguments set them.
+MapOptions map_options(const MapArgs& args);
+
+/// The MTL file beside `-o`. \throw BadInput if -o is no .obj or --glb no .glb.
+std::string mtl_path_of(const MapArgs& args);
+
+/// A map with several charts (issue 13) made and written by `run_map_charts`.
+struct ChartsRun {
+    ChartsResult result;
+    std::vector<std::string> images;      ///< per chart, the image used (empty when only image_size was given)
+    std::vector<std::array<int, 2>> sizes;  ///< per chart, its image's width and height
+    std::vector<std::string> written;     ///< the files written, in order
+};
+
+/// `ctmap map` for a features file with charts: map_charts, then OBJ + MTL with a material per
+/// chart (+ GLB with a primitive per chart, report) written together. \throw as run_map.
+ChartsRun run_map_charts(const MapArgs& args);
+
+/// The short human summary of a charts map, a line per chart.
+void print_charts_summary(const MapArgs& args, const ChartsRun& run, std::ostream& os);
 
 Command add_map_command(CLI::App& app);      // cmd_map.cpp
 Command add_starter_command(CLI::App& app);  // cmd_starter.cpp

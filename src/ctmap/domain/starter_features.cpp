@@ -85,7 +85,8 @@ std::vector<Vec2> spread_radially(const TriMesh& mesh, std::vector<Vec2> disc) {
     return disc;
 }
 
-FeatureSet starter_features(const TriMesh& mesh, int width, int height, const StarterOptions& opt) {
+FeatureSet starter_features(const TriMesh& mesh, int width, int height, const StarterOptions& opt,
+                            const std::vector<int>* border_vertices) {
     // Tutte's map spread radially so that the 3D area is even over the disc: Tutte's own crowds
     // the interior of a curved mesh into the middle (landmarks 40 pixels apart on a 512 image).
     const std::vector<Vec2> disc = spread_radially(mesh, tutte_map(mesh));
@@ -100,9 +101,10 @@ FeatureSet starter_features(const TriMesh& mesh, int width, int height, const St
     for (std::size_t i = 0; i + 1 < loop.size(); ++i)
         acc.push_back(acc.back() + (mesh.positions[loop[i + 1]] - mesh.positions[loop[i]]).norm());
     const double total = acc.back() + (mesh.positions[loop.front()] - mesh.positions[loop.back()]).norm();
-    const int nb = std::clamp(opt.border, 0, int(loop.size()));
+    const int nb = border_vertices ? int(border_vertices->size()) : std::clamp(opt.border, 0, int(loop.size()));
     std::vector<int> chosen;
-    for (int k = 0; k < nb; ++k) {
+    if (border_vertices) chosen = *border_vertices;
+    for (int k = 0; k < nb && !border_vertices; ++k) {
         const double s = total * k / nb;
         const int i = int(std::lower_bound(acc.begin(), acc.end(), s) - acc.begin());
         const int v = loop[std::min<int>(i, int(loop.size()) - 1)];

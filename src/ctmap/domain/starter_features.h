@@ -29,8 +29,11 @@ struct StarterOptions {
     double margin = 0.05;  ///< the ellipse stays this fraction of the image size inside it
 };
 
-/// A feasible features set for `mesh` on a `width` x `height` image (pixels, DESIGN §4).
+/// A feasible features set for `mesh` on a `width` x `height` image (pixels, DESIGN §4). With
+/// `border_vertices`, those (on the mesh border) are the border features, named
+/// border0, border1, ... in that order, instead of `options.border` equally spaced ones.
 /// \pre `mesh` is a manifold disc; width, height > 0.
-FeatureSet starter_features(const TriMesh& mesh, int width, int height, const StarterOptions& options = {});
+FeatureSet starter_features(const TriMesh& mesh, int width, int height, const StarterOptions& options = {},
+                            const std::vector<int>* border_vertices = nullptr);
 
 }  // namespace ctmap

@@ -23,6 +23,7 @@ RenderScene RenderInputs::scene() const {
     s.feature_vertex = feature_vertex;
     s.feature_uv = feature_uv;
     s.triangulation = triangulation ? &*triangulation : nullptr;
+    for (const Image& img : chart_images) s.chart_images.push_back(&img);
     return s;
 }
 
@@ -49,8 +50,37 @@ RenderInputs read_render_inputs(const RenderFiles& files, const std::vector<Rend
     std::string ext = std::filesystem::path(files.map).extension().string();
     for (char& c : ext) c = char(std::tolower((unsigned char)c));
     GlbTexture embedded;
-    in.mesh = ext == ".glb" ? read_glb(files.map, &embedded) : read_textured_obj(files.map, &mtl_image);
+    std::vector<ChartMaterial> materials;
+    in.mesh = ext == ".glb" ? read_glb(files.map, &embedded) : read_textured_obj(files.map, &mtl_image, &materials);
     if (in.mesh.mesh.faces.empty()) throw BadInput(files.map, "no faces: nothing to draw");
+    if (!files.chart.empty()) {
+        // One chart: its faces only, with its material's image.
+        int chart = -1;
+        std::string names;
+        for (std::size_t c = 0; c < materials.size(); ++c) {
+            if (materials[c].name == files.chart || materials[c].name == "chart_" + files.chart) chart = int(c);
+            names += (names.empty() ? "" : ", ") + materials[c].name;
+        }
+        if (chart < 0) throw BadInput(files.map, "no chart " + files.chart + " (its materials: " + names + ")");
+        TexturedMesh one;
+        one.mesh.positions = in.mesh.mesh.positions;
+        one.uvs = in.mesh.uvs;
+        for (std::size_t f = 0; f < in.mesh.mesh.faces.size(); ++f)
+            if (in.mesh.chart[f] == chart) {
+                one.mesh.faces.push_back(in.mesh.mesh.faces[f]);
+                if (f < in.mesh.uv_faces.size()) one.uv_faces.push_back(in.mesh.uv_faces[f]);
+                if (f < in.mesh.patch.size()) one.patch.push_back(in.mesh.patch[f]);
+                one.chart.push_back(0);
+            }
+        in.mesh = std::move(one);
+        mtl_image = materials[chart].image;
+    } else if (materials.size() > 1 && any(modes, {RenderMode::textured})) {
+        for (const ChartMaterial& m : materials) {
+            if (m.image.empty())
+                throw BadInput(files.map, "material " + m.name + " has no image (`map_Kd`), which --mode textured needs");
+            in.chart_images.push_back(read_image(m.image));
+        }
+    }
     const bool has_uv = !in.mesh.uvs.empty() && in.mesh.uv_faces.size() == in.mesh.mesh.faces.size();
     if (!has_uv && any(modes, {M::textured, M::checker, M::uv}))
         throw BadInput(files.map, "no texture coordinates (`vt` and `f v/vt`), which " +

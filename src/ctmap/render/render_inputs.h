@@ -20,6 +20,10 @@ struct RenderFiles {
     std::string map;       ///< textured OBJ (required)
     std::string image;     ///< overrides the OBJ material's `map_Kd` (and the features file's `image`)
     std::string features;  ///< features.json (DESIGN §4): markers, and the triangulation picture
+    /// A map with several charts (an OBJ with a material per chart, issue 13): draw only the
+    /// chart of this name (its material, `chart_<name>`), with its own image; empty: every chart,
+    /// each textured with its material's image.
+    std::string chart;
 };
 
 /// The inputs read and checked; `scene()` points into this object, so keep it alive while drawing.
@@ -31,6 +35,7 @@ struct RenderInputs {
     std::vector<int> feature_vertex;  ///< per feature, its vertex of `mesh`
     std::vector<Vec2> feature_uv;     ///< per feature, its UV (DESIGN §3, `image_to_uv`)
     std::optional<FeatureTriangulation> triangulation;
+    std::vector<Image> chart_images;  ///< per chart, its material's image (OBJ with several charts)
 
     RenderScene scene() const;
 };

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <unordered_map>
 
@@ -720,11 +721,19 @@ Image render_map(const RenderScene& scene, const RenderOptions& options) {
     // Surfaces: the mesh in 3D, the image rectangle in the image plane.
     Geometry surface;
     Texture texture;
+    std::vector<std::unique_ptr<Texture>> chart_textures;  // GL handles do not move
     bool textured = false;
     Eigen::Vector4d uv_transform(1, 1, 0, 0);
     if (three_d) {
         fill(surface, mesh_vertices(*scene.mesh, mode == RenderMode::paths));
-        if (mode == RenderMode::textured) {
+        if (mode == RenderMode::textured && !scene.chart_images.empty()) {
+            // Several charts (issue 13): each chart's faces with its own image.
+            for (const Image* img : scene.chart_images) {
+                chart_textures.push_back(std::make_unique<Texture>());
+                upload_texture(*chart_textures.back(), *img, false);
+            }
+            textured = true;
+        } else if (mode == RenderMode::textured) {
             upload_texture(texture, *scene.image, false);
             textured = true;
         } else if (mode == RenderMode::checker) {
@@ -769,7 +778,18 @@ Image render_map(const RenderScene& scene, const RenderOptions& options) {
         glDisable(GL_DEPTH_TEST);
     }
     glBindVertexArray(surface.vao.id);
-    glDrawArrays(GL_TRIANGLES, 0, surface.count);
+    if (chart_textures.empty()) {
+        glDrawArrays(GL_TRIANGLES, 0, surface.count);
+    } else {  // runs of faces of one chart, each with its chart's texture
+        const std::vector<int>& chart = scene.mesh->chart;
+        for (std::size_t f = 0; f < chart.size();) {
+            std::size_t g = f;
+            while (g < chart.size() && chart[g] == chart[f]) ++g;
+            glBindTexture(GL_TEXTURE_2D, chart_textures.at(std::size_t(chart[f]))->id);
+            glDrawArrays(GL_TRIANGLES, GLint(3 * f), GLsizei(3 * (g - f)));
+            f = g;
+        }
+    }
     glDisable(GL_POLYGON_OFFSET_FILL);
     check_gl("drawing the surface");
 

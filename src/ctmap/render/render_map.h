@@ -64,6 +64,9 @@ struct RenderOptions {
 struct RenderScene {
     const TexturedMesh* mesh = nullptr;  ///< the map: UVs per corner (OBJ convention, v up), patches for `paths`
     const Image* image = nullptr;        ///< the texture (textured, uv, triangulation); its size sets the UV aspect
+    /// Several charts (issue 13): per chart id of `mesh->chart`, its image (textured mode); empty:
+    /// `image` for every face.
+    std::vector<const Image*> chart_images;
     std::vector<int> feature_vertex;     ///< per feature, its vertex of `mesh` (markers in 3D modes)
     std::vector<Vec2> feature_uv;        ///< per feature, its UV (markers in the image-plane modes)
     const FeatureTriangulation* triangulation = nullptr;  ///< for `triangulation` (points in UV)

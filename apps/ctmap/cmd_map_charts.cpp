@@ -1,0 +1,168 @@
+// `ctmap map` with a features file that has charts (issue 13): several images on one mesh,
+// written as one OBJ with a material per chart (+ GLB with a primitive per chart, report).
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "commands.h"
+#include "progress.h"
+#include "ctmap/errors.h"
+#include "ctmap/io/atomic_file.h"
+#include "ctmap/io/chart_features.h"
+#include "ctmap/io/glb_io.h"
+#include "ctmap/io/image.h"
+#include "ctmap/io/input_file.h"
+#include "ctmap/io/map_report.h"
+#include "ctmap/io/mesh_topology.h"
+#include "ctmap/io/obj_io.h"
+#include "ctmap/io/output_paths.h"
+#include "ctmap/io/read_mesh.h"
+
+namespace ctmap::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A chart's material name: its name with every character but letters, digits, '_' and '-'
+/// replaced (OBJ material names end at white space).
+std::string material_name(const std::string& chart) {
+    std::string out = "chart_";
+    for (char c : chart) out += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
+    return out;
+}
+
+std::string fixed(double x, int digits) {
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(digits) << x;
+    return os.str();
+}
+
+}  // namespace
+
+ChartsRun run_map_charts(const MapArgs& a) {
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
+    const std::string mtl = mtl_path_of(a);
+    if (!a.image.empty())
+        throw BadInput(a.features, "--image cannot be used with charts: each chart names its own \"image\"");
+    if (a.copy_image)
+        throw BadInput(a.features, "--copy-image is not available with charts yet: the MTL names each chart's image");
+    check_outputs({{a.mesh, "the mesh"}, {a.features, "the features file"}},
+                  {{a.output, "the output (-o)"}, {mtl, "the output's material file"}, {a.glb, "--glb"},
+                   {a.report, "--report"}});
+    const TriMesh mesh = read_mesh(a.mesh);
+    require_manifold(compute_topology(mesh), a.mesh);
+    ChartFile file = read_chart_features(a.features);
+    ChartsRun run;
+    run.images = resolve_chart_images(file, run.sizes);
+    std::vector<NamedPath> inputs{{a.mesh, "the mesh"}, {a.features, "the features file"}};
+    for (std::size_t c = 0; c < run.images.size(); ++c)
+        inputs.push_back({run.images[c], "the image of chart '" + file.charts[c].name + "'"});
+    check_outputs(inputs, {{a.output, "the output (-o)"}, {mtl, "the output's material file"}, {a.glb, "--glb"},
+                           {a.report, "--report"}});
+    for (const ChartFeatures& c : file.charts) {
+        if (!run.images.empty() && exif_orientation(read_input_file(run.images[&c - file.charts.data()], "image file")) != 1)
+            throw BadInput(run.images[&c - file.charts.data()],
+                           "a JPEG turned by its EXIF orientation is not available as a chart's image yet: save it "
+                           "upright (as PNG) first");
+        naming_file(a.features, [&] { return check_features_on_mesh(c.features, mesh, a.mesh, a.snap); });
+    }
+    std::vector<ChartInput> charts;
+    for (std::size_t c = 0; c < file.charts.size(); ++c) {
+        ChartInput in;
+        in.name = file.charts[c].name;
+        in.features = map_features(file.charts[c].features, run.sizes[c][0], run.sizes[c][1]);
+        in.border = file.charts[c].border;
+        charts.push_back(std::move(in));
+    }
+    if (!a.quiet) {
+        std::cout << "ctmap map: " << a.mesh << " with " << charts.size() << " charts:";
+        for (std::size_t c = 0; c < charts.size(); ++c)
+            std::cout << (c ? ";" : "") << " '" << charts[c].name << "' " << charts[c].features.size() << " features on "
+                      << (run.images[c].empty() ? std::string("a") : run.images[c]) << " (" << run.sizes[c][0] << " x "
+                      << run.sizes[c][1] << ")";
+        std::cout << std::endl;
+    }
+    const double read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+
+    MapOptions options = map_options(a);
+    Progress progress(!a.quiet, isatty(fileno(stderr)));
+    options.progress = [&](const std::string& stage, int done, int total) { progress(stage, done, total); };
+    run.result = naming_file(a.features, [&] { return map_charts(mesh, charts, options); });
+    progress.clear();
+    run.result.timings_ms.read = read_ms;
+    run.result.timings_ms.total += read_ms;
+
+    // Everything to temporaries first, renamed together at the end.
+    OutputSet outputs;
+    std::vector<ChartMaterial> materials;
+    for (std::size_t c = 0; c < charts.size(); ++c) materials.push_back({material_name(charts[c].name), run.images[c]});
+    write_obj(run.result.textured, a.output, materials, outputs);
+    run.written = {a.output, mtl};
+    if (!a.glb.empty()) {
+        write_glb(run.result.textured, a.glb, materials, outputs);
+        run.written.push_back(a.glb);
+    }
+    if (!a.report.empty()) {
+        nlohmann::json j;
+        const TexturedMesh& tm = run.result.textured;
+        j["inputs"] = {{"mesh", a.mesh}, {"features", a.features}};
+        j["counts"] = {{"charts", charts.size()},
+                       {"input_vertices", mesh.num_vertices()},
+                       {"input_faces", mesh.num_faces()},
+                       {"vertices", tm.mesh.num_vertices()},
+                       {"faces", tm.mesh.num_faces()},
+                       {"seam_pieces", run.result.seams.size()}};
+        const MapTimings& t = run.result.timings_ms;
+        j["timings_ms"] = {{"read", t.read},     {"triangulate", t.triangulate}, {"paths", t.paths},
+                           {"embed", t.embed},   {"refine", t.refine},           {"optimise", t.optimise},
+                           {"certify", t.certify}, {"total", t.total}};
+        j["certificate"] = certificate_to_json(run.result.certificate);
+        j["charts"] = nlohmann::json::array();
+        for (std::size_t c = 0; c < charts.size(); ++c) {
+            const ChartMap& cm = run.result.charts[c];
+            MapReportInputs in{a.mesh, a.features, run.images[c], run.sizes[c][0], run.sizes[c][1],
+                               int(cm.result.cut.num_input_vertices), 0};
+            nlohmann::json chart = map_report(cm.result, in);
+            chart["name"] = cm.name;
+            chart["material"] = materials[c].name;
+            chart["faces"] = cm.faces.size();
+            j["charts"].push_back(chart);
+        }
+        const std::string tmp = outputs.add(a.report);
+        write_text_file(tmp, j.dump(2) + "\n");
+        run.written.push_back(a.report);
+    }
+    outputs.commit_all();
+    return run;
+}
+
+void print_charts_summary(const MapArgs&, const ChartsRun& run, std::ostream& os) {
+    const ChartsResult& r = run.result;
+    const Certificate& c = r.certificate;
+    for (const ChartMap& cm : r.charts) {
+        const MapResult& m = cm.result;
+        os << "  chart '" << cm.name << "': " << m.triangulation.triangles.size() << " patches, " << cm.faces.size()
+           << " faces, certificate " << (m.certificate.valid ? "valid" : "INVALID") << ", symmetric Dirichlet "
+           << fixed(m.before_refine.symmetric_dirichlet, 3) << " -> " << fixed(m.certificate.distortion.symmetric_dirichlet, 3)
+           << (m.certificate.mirrored ? " (mirrored)" : "") << "\n";
+    }
+    os << "  " << r.seams.size() << " seam pieces, " << r.textured.mesh.num_vertices() << " vertices, "
+       << r.textured.mesh.num_faces() << " faces\n"
+       << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate
+       << " degenerate, feature error " << c.feature_max_error << " over " << r.occurrences.size()
+       << " feature occurrences, every chart's border " << (c.border_simple ? "simple" : "crossing") << ")\n";
+    const MapTimings& t = r.timings_ms;
+    os << "  ms: read " << fixed(t.read, 1) << ", seams and paths " << fixed(t.paths, 1) << ", embed " << fixed(t.embed, 1)
+       << ", refine " << fixed(t.refine, 1) << ", optimise " << fixed(t.optimise, 1) << ", certify " << fixed(t.certify, 1)
+       << ", total " << fixed(t.total, 1) << "\n  wrote";
+    for (const std::string& f : run.written) os << " " << f;
+    os << "\n";
+}
+
+}  // namespace ctmap::cli
