@@ -87,6 +87,9 @@ ChartsRun run_map_charts(const MapArgs& args);
 /// The short human summary of a charts map, a line per chart.
 void print_charts_summary(const MapArgs& args, const ChartsRun& run, std::ostream& os);
 
+/// `ctmap check` for a features file with charts (cmd_check_charts.cpp): exit 0 valid, 1 invalid.
+int check_charts(const std::string& map_path, const std::string& features_path, bool as_json, double snap);
+
 Command add_map_command(CLI::App& app);      // cmd_map.cpp
 Command add_starter_command(CLI::App& app);  // cmd_starter.cpp
 Command add_morph_command(CLI::App& app);    // cmd_morph.cpp

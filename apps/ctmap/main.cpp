@@ -12,7 +12,9 @@
 #include "ctmap/errors.h"
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/io/data_path.h"
+#include "ctmap/io/chart_features.h"
 #include "ctmap/io/features.h"
+#include "ctmap/io/input_file.h"
 #include "ctmap/io/glb_io.h"
 #include "ctmap/io/image.h"
 #include "ctmap/io/mesh_topology.h"
@@ -121,6 +123,8 @@ int cmd_convert(const std::string& mesh_path, const std::string& out_path) {
 /// `ctmap map` writes with, so "exact" is bitwise. Exit 0 valid, 1 invalid.
 int cmd_check(const std::string& obj_path, const std::string& features_path, const std::string& image_arg,
               bool as_json, double snap) {
+    if (has_charts(read_input_file(features_path, "features file"), features_path))
+        return cli::check_charts(obj_path, features_path, as_json, snap);
     const TexturedMesh tm = lower_ext(obj_path) == ".glb" ? read_glb(obj_path) : read_textured_obj(obj_path);
     if (tm.uvs.empty() || tm.uv_faces.size() != tm.mesh.faces.size())
         throw BadInput(obj_path, "no texture coordinates (`vt` and `f v/vt`): there is no map to check");

@@ -218,6 +218,10 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
         const std::vector<int>& loop = loops[c];
         const int left = adj.left(loop[0], loop[1]), right = adj.left(loop[1], loop[0]);
         const int left_side = left >= 0 ? component[left] : -1, right_side = right >= 0 ? component[right] : -1;
+        if (left_side >= 0 && left_side == right_side)
+            throw BadInput("", "chart " + named(ch.name) + ": its border does not cut the mesh in two (a handle of the "
+                                   "mesh passes through it), so its region is not a disc: put the border round a "
+                                   "disc of the mesh");
         std::set<int> sides;
         for (int v : ch.interior) sides.insert(component[a_face[v]]);  // v is on no seam: its faces are one side
         if (sides.size() > 1)

@@ -1,0 +1,170 @@
+// Issue 13 through the real program: starter-features --charts 2, map, check, render on closed
+// meshes; bad charts files refused with exit 2 naming the charts and features, nothing written.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "ctmap/certify/certificate.h"
+#include "ctmap/io/obj_io.h"
+#include "test_support.h"
+
+namespace ctmap::test {
+namespace {
+
+using json = nlohmann::json;
+
+/// A starter two-chart file for `mesh` on astronaut.png (and its mirror) in `dir`.
+json make_starter(const TempDir& dir, const std::string& mesh) {
+    const RunResult s = run_ctmap("starter-features " + q(data("meshes/" + mesh + ".off")) + " --image " +
+                                  q(data("images/astronaut.png")) + " --charts 2 -o " + q(dir / "charts.json"));
+    EXPECT_EQ(s.code, 0) << s.out;
+    return json::parse(read_file(dir / "charts.json"));
+}
+
+/// The map `ctmap map` wrote, certified here from the features file's own numbers: each
+/// chart's faces are its material's, each feature's UV is (x / W, 1 - y / H) of its pixels.
+Certificate certify_written(const std::string& obj, const json& charts, int width, int height) {
+    std::vector<ChartMaterial> materials;
+    const TexturedMesh tm = read_textured_obj(obj, nullptr, &materials);
+    std::vector<int> vertex, chart;
+    std::vector<Vec2> uv;
+    for (const json& c : charts["charts"]) {
+        int index = -1;
+        for (std::size_t m = 0; m < materials.size(); ++m)
+            if (materials[m].name == "chart_" + c["name"].get<std::string>()) index = int(m);
+        EXPECT_GE(index, 0) << "no material for chart " << c["name"];
+        std::map<std::string, int> vertex_of;  // a feature's vertex may be given in one chart only
+        for (const json& d : charts["charts"])
+            for (const json& f : d["features"])
+                if (f.contains("vertex")) vertex_of[f["name"]] = f["vertex"];
+        for (const json& f : c["features"]) {
+            vertex.push_back(vertex_of.at(f["name"]));
+            uv.emplace_back(f["image"][0].get<double>() / width, 1.0 - f["image"][1].get<double>() / height);
+            chart.push_back(index);
+        }
+    }
+    CertifyOptions opt;
+    opt.feature_chart = chart;
+    return certify(tm, vertex, uv, opt);
+}
+
+TEST(ChartsCli, StarterMapCheckAndRenderOnClosedMeshes) {
+    for (const char* mesh : {"cow", "homer"}) {
+        TempDir dir;
+        const json charts = make_starter(dir, mesh);
+        ASSERT_EQ(charts["charts"].size(), 2u);
+        const std::string before = read_file(dir / "charts.json");
+        const RunResult m = run_ctmap("map " + q(data(std::string("meshes/") + mesh + ".off")) + " " + q(dir / "charts.json") +
+                                      " -o " + q(dir / "map.obj") + " --glb " + q(dir / "map.glb") + " --report " +
+                                      q(dir / "report.json"));
+        ASSERT_EQ(m.code, 0) << m.out;
+        std::printf("%s", m.out.c_str());
+        EXPECT_EQ(read_file(dir / "charts.json"), before) << "the features file changed";
+        const Certificate c = certify_written(dir / "map.obj", charts, 512, 512);
+        EXPECT_TRUE(c.valid) << mesh << ": " << c.flipped << " flipped, feature error " << c.feature_max_error
+                             << ", border crossings " << c.border_crossings;
+        // Both charts in the MTL, each with its own image.
+        const std::string mtl = read_file(dir / "map.mtl");
+        EXPECT_NE(mtl.find("newmtl chart_front"), std::string::npos);
+        EXPECT_NE(mtl.find("newmtl chart_back"), std::string::npos);
+        EXPECT_NE(mtl.find("astronaut_mirrored.png"), std::string::npos);
+        const json report = json::parse(read_file(dir / "report.json"));
+        EXPECT_EQ(report["charts"].size(), 2u);
+        EXPECT_TRUE(report["certificate"]["valid"].get<bool>());
+        for (const char* out : {"map.obj", "map.glb"}) {
+            const RunResult k = run_ctmap("check " + q(dir / out) + " --features " + q(dir / "charts.json"));
+            EXPECT_EQ(k.code, 0) << k.out;
+            EXPECT_NE(k.out.find("2 charts"), std::string::npos) << k.out;
+        }
+        const RunResult r = run_ctmap("render " + q(dir / "map.obj") + " -o " + q(dir / "front.png") + " --size 128 -q");
+        EXPECT_EQ(r.code, 0) << r.out;
+        const RunResult u = run_ctmap("render " + q(dir / "map.obj") + " -o " + q(dir / "uv.png") +
+                                      " --mode uv --chart back --size 128 -q");
+        EXPECT_EQ(u.code, 0) << u.out;
+    }
+}
+
+/// A charts file changed by `edit`, mapped: exit 2, the message holds every word of `expect`,
+/// nothing written.
+void expect_refused(const std::string& mesh, const std::function<void(json&)>& edit,
+                    const std::vector<std::string>& expect) {
+    TempDir dir;
+    json charts = make_starter(dir, mesh);
+    edit(charts);
+    write_file(dir / "bad.json", charts.dump(2));
+    const int files = dir.count();
+    const RunResult m = run_ctmap("map " + q(data("meshes/" + mesh + ".off")) + " " + q(dir / "bad.json") + " -o " +
+                                  q(dir / "map.obj") + " --glb " + q(dir / "map.glb"));
+    EXPECT_EQ(m.code, 2) << m.out;
+    for (const std::string& w : expect) EXPECT_NE(m.out.find(w), std::string::npos) << "no \"" << w << "\" in: " << m.out;
+    EXPECT_NE(m.out.find("bad.json"), std::string::npos) << m.out;
+    EXPECT_EQ(dir.count(), files) << "an output was left: " << m.out;
+    std::printf("refused: %s", m.out.c_str());
+}
+
+json& chart(json& j, const std::string& name) {
+    for (json& c : j["charts"])
+        if (c["name"] == name) return c;
+    throw std::runtime_error("no chart " + name);
+}
+
+TEST(BadInputCharts, SeamOrderDisagrees) {
+    expect_refused("cow", [](json& j) { std::swap(chart(j, "back")["border"][1], chart(j, "back")["border"][3]); },
+                   {"'front'", "'back'", "different orders", "seam1", "seam3"});
+}
+
+TEST(BadInputCharts, FeatureVertexDiffersBetweenCharts) {
+    expect_refused("cow",
+                   [](json& j) {
+                       for (json& f : chart(j, "back")["features"])
+                           if (f["name"] == "seam2") f["vertex"] = f["vertex"].get<int>() + 1;
+                   },
+                   {"'seam2'", "'front'", "'back'", "one place on the mesh"});
+}
+
+TEST(BadInputCharts, UnknownBorderName) {
+    expect_refused("cow", [](json& j) { chart(j, "front")["border"].push_back("nose"); },
+                   {"'front'", "'nose'", "not one of the chart's features"});
+}
+
+TEST(BadInputCharts, RegionHoldsAnotherChartsFeature) {
+    // A landmark of the front half listed in the back chart: the back region does not hold it.
+    expect_refused("cow",
+                   [](json& j) {
+                       json f = chart(j, "front")["features"].back();
+                       chart(j, "front")["features"].erase(chart(j, "front")["features"].size() - 1);
+                       f["name"] = "stray";
+                       chart(j, "back")["features"].push_back(f);
+                   },
+                   {"'back'", "interior features"});
+}
+
+TEST(BadInputCharts, BorderFeaturesCrossInTheImage) {
+    // Two seam features' image points swapped in one chart: its border polygon crosses itself.
+    expect_refused("cow",
+                   [](json& j) {
+                       json& fs = chart(j, "front")["features"];
+                       json *a = nullptr, *b = nullptr;
+                       for (json& f : fs) {
+                           if (f["name"] == "seam1") a = &f;
+                           if (f["name"] == "seam5") b = &f;
+                       }
+                       std::swap((*a)["image"], (*b)["image"]);
+                   },
+                   {"chart 'front'", "seam"});
+}
+
+TEST(BadInputCharts, RegionIsNotADisc) {
+    // On the elk (genus 1) a loop round the middle need not cut it into two discs: a chart whose
+    // region keeps a handle is refused.
+    TempDir dir;
+    const RunResult s = run_ctmap("starter-features " + q(data("meshes/elk.off")) + " --image " +
+                                  q(data("images/astronaut.png")) + " --charts 2 -o " + q(dir / "charts.json"));
+    EXPECT_EQ(s.code, 2) << s.out;
+    EXPECT_NE(s.out.find("not a disc"), std::string::npos) << s.out;
+    EXPECT_EQ(dir.count(), 0) << s.out;
+    std::printf("refused: %s", s.out.c_str());
+}
+
+}  // namespace
+}  // namespace ctmap::test
