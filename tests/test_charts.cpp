@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "chart_cases.h"
+#include "ctmap/domain/starter_charts.h"
+#include "ctmap/io/mesh_topology.h"
 #include "ctmap/border_loop.h"
 #include "ctmap/io/read_mesh.h"
 #include "test_support.h"
@@ -22,7 +24,10 @@ void expect_valid_charts_map(const TriMesh& input, const std::vector<ChartInput>
     EXPECT_EQ(c.flipped, 0);
     EXPECT_EQ(c.feature_max_error, 0.0);
     ASSERT_EQ(tm.chart.size(), tm.mesh.faces.size());
-    for (int ch : tm.chart) ASSERT_TRUE(ch >= 0 && ch < int(charts.size()));
+    // Every face in a chart: one of the given ones, or the rest (chart charts.size()).
+    const int rest_chart = r.rest.faces > 0 ? int(charts.size()) : int(charts.size()) - 1;
+    for (int ch : tm.chart) ASSERT_TRUE(ch >= 0 && ch <= rest_chart);
+    EXPECT_EQ(int(std::count(tm.chart.begin(), tm.chart.end(), int(charts.size()))), r.rest.faces);
     for (int v = 0; v < input.num_vertices(); ++v) ASSERT_EQ(tm.mesh.positions[v], input.positions[v]);
     // Every occurrence: its UV is the chart's constraint, bitwise, at every corner in that chart.
     std::size_t k = 0;
@@ -93,6 +98,49 @@ TEST(Charts, RandomTwoChartSetsOnClosedMeshesAreAllCertified) {
     }
     std::printf("%d of %d random two-chart sets certified\n", certified, total);
     EXPECT_EQ(certified, total);
+}
+
+}  // namespace
+}  // namespace ctmap::test
+
+namespace ctmap::test {
+namespace {
+
+/// Issue 13 must-shows 2 and 3: one feature chart on a closed head, on meshes with several
+/// border loops and on meshes with handles; the rest mapped automatically, every face with UVs,
+/// the whole certified.
+TEST(Charts, OneFeatureChartAndTheRestOnAnyManifold) {
+    for (const char* name : {"homer", "head", "holes", "elk", "elephant"}) {
+        const TriMesh mesh = read_mesh(data(std::string("meshes/") + name + ".off"));
+        const MeshTopology topo = compute_topology(mesh);
+        ASSERT_TRUE(topo.is_manifold && !topo.is_disc) << name;
+        const ChartFeatures cf = starter_patch_chart(mesh, 512, 512, 0.3);
+        ChartInput chart;
+        chart.name = cf.name;
+        chart.border = cf.border;
+        for (const Feature& f : cf.features.features) {
+            MapFeature m;
+            m.name = f.name;
+            m.vertex = f.vertex;
+            m.uv = image_to_uv(f.image, 512, 512);
+            chart.features.push_back(m);
+        }
+        const std::vector<ChartInput> charts{chart};
+        const ChartsResult r = map_charts(mesh, charts);
+        SCOPED_TRACE(name);
+        expect_valid_charts_map(mesh, charts, r);
+        EXPECT_GT(r.rest.faces, 0);
+        // Every input face is covered by the output's faces (same area, checked above), and each
+        // rest piece was cut open enough to be a disc: through every handle and between every
+        // border loop, so a piece of genus g with b border loops needs at least 2g + b - 1 cuts.
+        const int genus = (2 - topo.euler - topo.border_loops) / 2;
+        if (genus > 0 || topo.border_loops > 1) EXPECT_GT(r.rest.cut_edges, 0);
+        std::printf("%s (%s%d border loops, genus %d): %zu faces, %d in the chart, %d in the rest (%d piece(s), %d "
+                    "edges cut), certificate %s\n",
+                    name, topo.is_closed ? "closed, " : "", topo.border_loops, genus, r.textured.mesh.faces.size(),
+                    int(r.charts[0].faces.size()), r.rest.faces, r.rest.pieces, r.rest.cut_edges,
+                    r.certificate.valid ? "valid" : "INVALID");
+    }
 }
 
 }  // namespace

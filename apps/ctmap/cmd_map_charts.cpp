@@ -36,6 +36,22 @@ std::string material_name(const std::string& chart) {
     return out;
 }
 
+/// A checker of `cells` x `cells` squares (the render's colours), for the faces in no chart.
+Image checker_image(int size, int cells) {
+    Image img;
+    img.width = img.height = size;
+    img.channels = 4;
+    img.pixels.resize(std::size_t(size) * size * 4);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const bool dark = ((x * cells / size) + (y * cells / size)) % 2 == 0;
+            const std::uint8_t c[4] = {std::uint8_t(dark ? 45 : 240), std::uint8_t(dark ? 85 : 240),
+                                       std::uint8_t(dark ? 190 : 235), 255};
+            for (int k = 0; k < 4; ++k) img.pixels[(std::size_t(y) * size + x) * 4 + k] = c[k];
+        }
+    return img;
+}
+
 std::string fixed(double x, int digits) {
     std::ostringstream os;
     os << std::fixed << std::setprecision(digits) << x;
@@ -102,10 +118,23 @@ ChartsRun run_map_charts(const MapArgs& a) {
     OutputSet outputs;
     std::vector<ChartMaterial> materials;
     for (std::size_t c = 0; c < charts.size(); ++c) materials.push_back({material_name(charts[c].name), run.images[c]});
+    // The faces in no chart: their own material, a checker written beside the OBJ.
+    std::string rest_tmp;
+    if (run.result.rest.faces > 0) {
+        const std::string rest_png =
+            (fs::path(a.output).parent_path() / (fs::path(a.output).stem().string() + "_rest.png")).string();
+        check_outputs({{a.mesh, "the mesh"}, {a.features, "the features file"}}, {{rest_png, "the rest's checker"}});
+        rest_tmp = outputs.add(rest_png);
+        write_text_file(rest_tmp, encode_png(checker_image(512, 8)));
+        materials.push_back({"rest", rest_png});
+    }
     write_obj(run.result.textured, a.output, materials, outputs);
     run.written = {a.output, mtl};
+    if (!rest_tmp.empty()) run.written.push_back(materials.back().image);
     if (!a.glb.empty()) {
-        write_glb(run.result.textured, a.glb, materials, outputs);
+        std::vector<ChartMaterial> embedded = materials;
+        if (!rest_tmp.empty()) embedded.back().image = rest_tmp;  // not yet renamed into place
+        write_glb(run.result.textured, a.glb, embedded, outputs);
         run.written.push_back(a.glb);
     }
     if (!a.report.empty()) {
@@ -123,6 +152,9 @@ ChartsRun run_map_charts(const MapArgs& a) {
                            {"embed", t.embed},   {"refine", t.refine},           {"optimise", t.optimise},
                            {"certify", t.certify}, {"total", t.total}};
         j["certificate"] = certificate_to_json(run.result.certificate);
+        const RestMap& rest = run.result.rest;
+        j["rest"] = {{"faces", rest.faces}, {"pieces", rest.pieces}, {"cut_edges", rest.cut_edges},
+                     {"iterations", rest.iterations}, {"material", rest.faces > 0 ? "rest" : nullptr}};
         j["charts"] = nlohmann::json::array();
         for (std::size_t c = 0; c < charts.size(); ++c) {
             const ChartMap& cm = run.result.charts[c];
@@ -152,6 +184,9 @@ void print_charts_summary(const MapArgs&, const ChartsRun& run, std::ostream& os
            << fixed(m.before_refine.symmetric_dirichlet, 3) << " -> " << fixed(m.certificate.distortion.symmetric_dirichlet, 3)
            << (m.certificate.mirrored ? " (mirrored)" : "") << "\n";
     }
+    if (r.rest.faces > 0)
+        os << "  the rest: " << r.rest.faces << " faces in no chart, " << r.rest.pieces << " piece(s) cut into discs ("
+           << r.rest.cut_edges << " edges cut), mapped automatically with material rest (a checker)\n";
     os << "  " << r.seams.size() << " seam pieces, " << r.textured.mesh.num_vertices() << " vertices, "
        << r.textured.mesh.num_faces() << " faces\n"
        << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate

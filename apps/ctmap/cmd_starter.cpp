@@ -57,6 +57,23 @@ int run_starter_charts(const std::string& mesh_file, const std::string& image, c
     return kExitOk;
 }
 
+/// starter-features on a mesh that is not a disc: one chart round a patch at its front.
+int run_starter_patch(const TriMesh& mesh, const MeshTopology& topo, const std::string& mesh_file,
+                      const std::string& image, const std::string& output, double patch, const StarterOptions& options) {
+    namespace fs = std::filesystem;
+    const Image img = read_image(image);
+    std::vector<ChartFeatures> charts{
+        naming_file(mesh_file, [&] { return starter_patch_chart(mesh, img.width, img.height, patch, options); })};
+    charts[0].features.image = fs::relative(fs::absolute(image), fs::absolute(output).parent_path()).string();
+    write_text_file(output, chart_features_to_json(charts) + "\n");
+    std::cout << "wrote " << output << ": one chart 'patch' round the front of " << mesh_file << " ("
+              << (topo.is_closed ? "closed" : std::to_string(topo.border_loops) + " border loops") << ", Euler characteristic "
+              << topo.euler << "), " << charts[0].border.size() << " border and "
+              << charts[0].features.features.size() - charts[0].border.size() << " interior features on " << image
+              << "; ctmap map maps the rest of the mesh automatically\n";
+    return kExitOk;
+}
+
 }  // namespace
 
 Command add_starter_command(CLI::App& app) {
@@ -64,6 +81,7 @@ Command add_starter_command(CLI::App& app) {
         std::string mesh, image, output;
         StarterOptions options;
         int charts = 1;
+        double patch = 0.3;
         int seam = 8;
         bool no_mirror = false;
     };
@@ -87,6 +105,12 @@ Command add_starter_command(CLI::App& app) {
                     "back chart is placed on the image's mirror image, written beside the features file")
         ->capture_default_str()
         ->check(CLI::IsMember({1, 2}));
+    sub->add_option("--patch", a->patch,
+                    "for a mesh that is not a disc (closed, several border loops, handles) and --charts 1: one chart "
+                    "round a disc of about this share of the surface at the mesh's front (+z); the rest is mapped "
+                    "automatically by ctmap map")
+        ->capture_default_str()
+        ->check(CLI::Range(0.01, 0.95));
     sub->add_option("--seam", a->seam, "with --charts 2: features on the seam")->capture_default_str()->check(CLI::Range(3, 1000));
     sub->add_flag("--no-mirror", a->no_mirror,
                   "with --charts 2: both charts on the same image (the back chart mirrored on it) instead of the "
@@ -98,7 +122,10 @@ Command add_starter_command(CLI::App& app) {
                                                               !a->no_mirror);
                 check_outputs({{a->mesh, "the mesh"}, {a->image, "the image"}}, {{a->output, "the features file (-o)"}});
                 const TriMesh mesh = read_mesh(a->mesh);
-                require_disc(compute_topology(mesh), a->mesh);
+                const MeshTopology topo = compute_topology(mesh);
+                if (!topo.is_disc && topo.is_manifold && topo.components == 1 && topo.degenerate_faces == 0)
+                    return run_starter_patch(mesh, topo, a->mesh, a->image, a->output, a->patch, a->options);
+                require_disc(topo, a->mesh);
                 const Image img = read_image(a->image);
                 FeatureSet fs = starter_features(mesh, img.width, img.height, a->options);
                 // The image named relative to the features file, as DESIGN §4 resolves it.

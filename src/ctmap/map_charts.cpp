@@ -1,11 +1,14 @@
 #include "ctmap/map_charts.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <map>
 #include <set>
 
 #include "ctmap/border_loop.h"
+#include "ctmap/cut/cut_to_disc.h"
+#include "ctmap/domain/starter_features.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/mesh_topology.h"
 
@@ -38,6 +41,81 @@ decltype(auto) naming_chart(const std::string& chart, F&& f) {
 void add_timings(MapTimings& sum, const MapTimings& t) {
     sum.triangulate += t.triangulate, sum.paths += t.paths, sum.embed += t.embed, sum.refine += t.refine;
     sum.optimise += t.optimise, sum.certify += t.certify;
+}
+
+/// Maps the faces of `mesh` whose `face_chart` is -1 as chart `rest_chart` of `out`: each
+/// connected piece cut open into a disc (cut/cut_to_disc.h), mapped onto a circle by Tutte's
+/// convex combination map (one-to-one), optimised (refine/isometric.h, free border) and placed in
+/// its own tile of the unit square. Appends the faces, their UVs, chart ids and patches (one per
+/// piece, from `patch_base`) to `out`.
+RestMap map_rest(const TriMesh& mesh, const std::vector<int>& face_chart, int rest_chart, int patch_base,
+                 const MapOptions& options, TexturedMesh& out) {
+    RestMap rest;
+    const int nf = mesh.num_faces();
+    // Pieces: rest faces joined through shared edges.
+    std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;
+    for (int f = 0; f < nf; ++f)
+        if (face_chart[f] < 0)
+            for (int k = 0; k < 3; ++k)
+                faces_of_edge[std::minmax(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3])].push_back(f);
+    std::vector<int> piece(nf, -1);
+    std::vector<std::vector<int>> pieces;
+    for (int f0 = 0; f0 < nf; ++f0) {
+        if (face_chart[f0] >= 0 || piece[f0] >= 0) continue;
+        pieces.emplace_back();
+        std::vector<int> stack{f0};
+        piece[f0] = int(pieces.size()) - 1;
+        while (!stack.empty()) {
+            const int f = stack.back();
+            stack.pop_back();
+            pieces.back().push_back(f);
+            for (int k = 0; k < 3; ++k)
+                for (int g : faces_of_edge[std::minmax(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3])])
+                    if (piece[g] < 0) piece[g] = piece[f0], stack.push_back(g);
+        }
+    }
+    const int grid = int(std::ceil(std::sqrt(double(pieces.size()))));
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+        std::sort(pieces[p].begin(), pieces[p].end());
+        TriMesh sub;
+        std::vector<int> local(mesh.num_vertices(), -1), global;
+        for (int f : pieces[p]) {
+            Tri t;
+            for (int k = 0; k < 3; ++k) {
+                int& l = local[mesh.faces[f][k]];
+                if (l < 0) l = sub.num_vertices(), global.push_back(mesh.faces[f][k]), sub.positions.push_back(mesh.positions[mesh.faces[f][k]]);
+                t[k] = l;
+            }
+            sub.faces.push_back(t);
+        }
+        const DiscCut cut = cut_to_disc(sub);
+        rest.cut_edges += cut.cut_edges;
+        // Tutte's map onto the circle of this piece's tile, then the optimiser inside the tile.
+        const double cell = 1.0 / grid;
+        const Vec2 lo(cell * double(p % grid), 1.0 - cell * double(p / grid + 1));
+        std::vector<Vec2> uv = tutte_map(cut.disc);
+        for (Vec2& q : uv) q = lo + Vec2::Constant(0.5 * cell) + 0.45 * cell * q;
+        if (options.refine && options.refine_mode == RefineMode::isometric) {
+            IsometricOptions iopt = options.isometric;
+            iopt.box_lo = lo, iopt.box_hi = lo + Vec2::Constant(cell);
+            iopt.keep_in_box = true;
+            iopt.border = BorderMode::free;
+            iopt.on_iteration = nullptr;
+            const IsometricStats st = optimise_isometric(cut.disc, uv, {}, iopt);
+            rest.iterations += st.iterations;
+        }
+        const int uv_offset = int(out.uvs.size());
+        out.uvs.insert(out.uvs.end(), uv.begin(), uv.end());
+        for (const Tri& t : cut.disc.faces) {
+            out.mesh.faces.push_back({global[cut.original[t[0]]], global[cut.original[t[1]]], global[cut.original[t[2]]]});
+            out.uv_faces.push_back({t[0] + uv_offset, t[1] + uv_offset, t[2] + uv_offset});
+            out.chart.push_back(rest_chart);
+            out.patch.push_back(patch_base + int(p));  // a patch (OBJ group) per piece
+        }
+        rest.faces += cut.disc.num_faces();
+    }
+    rest.pieces = int(pieces.size());
+    return rest;
 }
 
 }  // namespace
@@ -126,11 +204,6 @@ ChartsResult map_charts(const TriMesh& input, const std::vector<ChartInput>& cha
     auto t0 = Clock::now();
     const ChartRegions regions = chart_regions(mesh, outlines);
     out.timings_ms.paths += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    const int in_no_chart = int(std::count(regions.face_chart.begin(), regions.face_chart.end(), -1));
-    if (in_no_chart > 0)
-        throw BadInput("", std::to_string(in_no_chart) + " of the mesh's " + std::to_string(mesh.num_faces()) +
-                               " faces lie in no chart; the automatic map of the rest is not built yet (issue 13): "
-                               "give charts that cover the mesh");
 
     // Each chart through the single-chart pipeline, on its region.
     out.textured.mesh.positions = mesh.positions;
@@ -182,6 +255,11 @@ ChartsResult map_charts(const TriMesh& input, const std::vector<ChartInput>& cha
         out.charts.push_back(std::move(cm));
     }
     for (const std::vector<int>& s : regions.seams) out.seams.push_back(s);  // seam vertices keep their indices
+    // The faces in no chart: mapped automatically as chart `charts.size()` ("rest").
+    t0 = Clock::now();
+    if (options.progress) options.progress("the rest", 0, 0);
+    out.rest = map_rest(mesh, regions.face_chart, int(charts.size()), patch_offset, options, out.textured);
+    out.timings_ms.optimise += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 
     t0 = Clock::now();
     CertifyOptions copt;

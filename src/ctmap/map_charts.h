@@ -38,6 +38,14 @@ struct FeatureOccurrence {
     Vec2 uv{0, 0};
 };
 
+/// The faces in no chart, mapped automatically (issue 13): chart `charts.size()` of the result.
+struct RestMap {
+    int faces = 0;       ///< faces in no chart (0: the charts cover the mesh; no rest chart)
+    int pieces = 0;      ///< connected pieces, each cut into a disc with a tile of its own
+    int cut_edges = 0;   ///< edges cut open to make the pieces discs (handles, several border loops)
+    int iterations = 0;  ///< the optimiser's iterations over the pieces
+};
+
 /// The charts' maps together, certified.
 struct ChartsResult {
     /// The whole mesh: its first vertices are the input's, in order (DESIGN §3), then the point
@@ -49,6 +57,7 @@ struct ChartsResult {
     std::vector<std::vector<int>> seams;  ///< the seam pieces as vertex paths of textured.mesh
     Certificate certificate;              ///< of the whole map, per chart (certify's feature_chart)
     MapTimings timings_ms;                ///< summed over the charts, plus the seams in `paths`
+    RestMap rest;                         ///< the faces in no chart
 
     /// The occurrences as certify's arguments.
     std::vector<int> occurrence_vertices() const;
@@ -59,10 +68,13 @@ struct ChartsResult {
 /// Maps `mesh` with several charts (paper §3): the seams first (cut/chart_regions.h), then each
 /// chart's region by `map_texture` with `options`, then the whole certified: every chart one
 /// orientation, every occurrence exact, every chart's UV border simple.
-/// \pre `mesh` is a consistently oriented manifold (closed, with borders, of any genus); every
-///      face lies in a chart's region (the automatic map of the rest is not built yet).
+/// Faces in no chart's region (the back of a head, a mesh's other handles and borders) are mapped
+/// automatically as one more chart, `charts.size()`: each connected piece cut into a disc through
+/// its handles and between its border loops, mapped one-to-one onto a circle (Tutte), optimised,
+/// and placed in a tile of its own of the unit square.
+/// \pre `mesh` is a consistently oriented manifold (closed, with borders, of any genus).
 /// \throw BadInput naming the charts and features (chart_regions' rules, map_texture's per
-///        chart, a feature given at different places in two charts, faces in no chart);
+///        chart, a feature given at different places in two charts);
 ///        TopologyError for a non-manifold mesh; InternalError if the map fails its certificate.
 ChartsResult map_charts(const TriMesh& mesh, const std::vector<ChartInput>& charts, const MapOptions& options = {});
 

@@ -29,6 +29,16 @@ struct StarterChartsOptions {
 std::vector<ChartFeatures> starter_charts(const TriMesh& mesh, int width, int height,
                                           const StarterChartsOptions& options = {});
 
+/// One chart round a patch of a mesh that is not a disc (closed, several border loops, handles):
+/// the disc of faces within a geodesic-like distance (along edges) of a seed vertex (the vertex
+/// farthest along +z, the front in the OBJ convention) holding about `area_share` of the
+/// surface, shrunk until it is a disc; `starter_features` on it (its border features equally
+/// spaced round it, named border0, ... in order, landmarks inside). The rest of the mesh is what
+/// `map_charts` maps automatically. \pre `mesh` is a consistently oriented manifold, 0 <
+/// area_share < 1. \throw BadInput if no disc round the seed is found.
+ChartFeatures starter_patch_chart(const TriMesh& mesh, int width, int height, double area_share,
+                                  const StarterOptions& options = {});
+
 /// A features file with charts as JSON text (DESIGN §4, issue 13), image points in pixels.
 std::string chart_features_to_json(const std::vector<ChartFeatures>& charts);
 
