@@ -154,7 +154,8 @@ ChartsRun run_map_charts(const MapArgs& a) {
         j["certificate"] = certificate_to_json(run.result.certificate);
         const RestMap& rest = run.result.rest;
         j["rest"] = {{"faces", rest.faces}, {"pieces", rest.pieces}, {"cut_edges", rest.cut_edges},
-                     {"iterations", rest.iterations}, {"material", rest.faces > 0 ? "rest" : nullptr}};
+                     {"iterations", rest.iterations},
+                     {"material", rest.faces > 0 ? nlohmann::json("rest") : nlohmann::json(nullptr)}};
         j["charts"] = nlohmann::json::array();
         for (std::size_t c = 0; c < charts.size(); ++c) {
             const ChartMap& cm = run.result.charts[c];
