@@ -43,3 +43,30 @@ for pair in nefertiti:lion-head mannequin-devil:lion-head; do
   "$ctmap" morph "$(data "meshes/$src.off")" "$(data "meshes/$dst.off")" "data/pairs/${src}_${dst}.json" \
     -o "$work/${src}_${dst}.glb" --strip "docs/morph_${src}_${dst}.png" --view three-quarter --frames 5
 done
+
+# Charts (issue 13, paper §3 Figs. 5-6): closed meshes with two charts, a photo and its mirror
+# image (starter-features --charts 2), drawn from both sides of the seam; a closed head and a
+# mesh with handles with one chart and the rest mapped automatically.
+while read -r mesh image side1 side2; do
+  "$ctmap" starter-features "$(data "meshes/$mesh.off")" --image "$(data "images/$image")" --charts 2 \
+    -o "$work/${mesh}_charts.json"
+  "$ctmap" map "$(data "meshes/$mesh.off")" "$work/${mesh}_charts.json" -o "$work/${mesh}_charts.obj" --quiet
+  "$ctmap" check "$work/${mesh}_charts.obj" --features "$work/${mesh}_charts.json"
+  for view in "$side1" "$side2"; do
+    "$ctmap" render "$work/${mesh}_charts.obj" -o "docs/charts_${mesh}_${view}.png" --view "$view" --size 480 -q
+  done
+done <<'CHARTS'
+cow chelsea.png front back
+homer astronaut.png front back
+bunny00 chelsea.png front back
+bull astronaut.png top bottom
+CHARTS
+for case in homer:front elephant:three-quarter; do
+  mesh=${case%%:*}; view=${case##*:}
+  "$ctmap" starter-features "$(data "meshes/$mesh.off")" --image "$(data "images/astronaut.png")" -o "$work/${mesh}_patch.json"
+  "$ctmap" map "$(data "meshes/$mesh.off")" "$work/${mesh}_patch.json" -o "$work/${mesh}_patch.obj" --quiet
+  "$ctmap" check "$work/${mesh}_patch.obj" --features "$work/${mesh}_patch.json"
+  for v in "$view" back; do
+    "$ctmap" render "$work/${mesh}_patch.obj" -o "docs/charts_${mesh}_rest_$v.png" --view "$v" --size 480 -q
+  done
+done

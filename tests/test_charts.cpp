@@ -145,3 +145,34 @@ TEST(Charts, OneFeatureChartAndTheRestOnAnyManifold) {
 
 }  // namespace
 }  // namespace ctmap::test
+
+namespace ctmap::test {
+namespace {
+
+/// certify with feature occurrences (CertifyOptions::feature_chart): a seam vertex with its
+/// constraint in chart 0 exact but in chart 1 off by one ulp is not valid, and each chart's
+/// corners are compared with their own chart's constraint only.
+TEST(Charts, CertifyComparesEachOccurrenceInItsOwnChart) {
+    const TriMesh mesh = read_mesh(data("meshes/cow.off"));
+    std::mt19937 rng(3);
+    const TwoChartCase cc = two_chart_case(mesh, 6, 4, 0.5, rng);
+    const ChartsResult r = map_charts(mesh, cc.charts);
+    CertifyOptions opt;
+    opt.feature_chart = r.occurrence_charts();
+    std::vector<Vec2> uv = r.occurrence_uvs();
+    ASSERT_TRUE(certify(r.textured, r.occurrence_vertices(), uv, opt).valid);
+    // seam0 occurs in both charts with different UVs; either occurrence one ulp off fails.
+    for (std::size_t i = 0; i < r.occurrences.size(); ++i) {
+        if (r.occurrences[i].name != "seam0") continue;
+        std::vector<Vec2> off = uv;
+        off[i].x() = std::nextafter(off[i].x(), 2.0);
+        const Certificate c = certify(r.textured, r.occurrence_vertices(), off, opt);
+        EXPECT_FALSE(c.valid) << "chart " << r.occurrences[i].chart;
+        EXPECT_EQ(c.worst_feature, int(i));
+    }
+    // Without the charts, seam0's corners in the other chart differ from either constraint.
+    EXPECT_FALSE(certify(r.textured, r.occurrence_vertices(), uv).valid);
+}
+
+}  // namespace
+}  // namespace ctmap::test

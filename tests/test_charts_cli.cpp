@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "ctmap/certify/certificate.h"
 #include "ctmap/io/obj_io.h"
@@ -154,6 +155,22 @@ TEST(BadInputCharts, BorderFeaturesCrossInTheImage) {
                    {"chart 'front'", "seam"});
 }
 
+TEST(BadInputCharts, ChartNameThatCannotNameAMaterial) {
+    expect_refused("cow", [](json& j) { chart(j, "back")["name"] = "back side"; },
+                   {"'back side'", "letters, digits"});
+}
+
+TEST(BadInputCharts, OneVertexUnderTwoNames) {
+    // The back chart names the vertex of the front's first landmark under a name of its own.
+    expect_refused("cow",
+                   [](json& j) {
+                       json f = chart(j, "front")["features"].back();
+                       f["name"] = "alias";
+                       chart(j, "back")["features"].push_back(f);
+                   },
+                   {"'alias'", "same mesh vertex"});
+}
+
 TEST(BadInputCharts, RegionIsNotADisc) {
     // On the elk (genus 1) a loop round the middle need not cut it into two discs: a chart whose
     // region keeps a handle is refused.
@@ -164,6 +181,67 @@ TEST(BadInputCharts, RegionIsNotADisc) {
     EXPECT_NE(s.out.find("not a disc"), std::string::npos) << s.out;
     EXPECT_EQ(dir.count(), 0) << s.out;
     std::printf("refused: %s", s.out.c_str());
+}
+
+}  // namespace
+}  // namespace ctmap::test
+
+namespace ctmap::test {
+namespace {
+
+/// Issue 13's readers give a chart per material; `ctmap check` of a features file without charts
+/// must still certify the whole OBJ as one map (a Blender OBJ with two materials is one chart):
+/// a face flipped alone in its own material is found, and material changes are no UV border.
+TEST(ChartsCli, CheckOfAOneChartMapIgnoresItsMaterials) {
+    TempDir dir;
+    const std::string features = data("features/nefertiti_astronaut.json");
+    const RunResult m = run_ctmap("map " + q(data("meshes/nefertiti.off")) + " " + q(features) + " --image " +
+                                  q(data("images/astronaut.png")) + " -o " + q(dir / "map.obj") + " -q");
+    ASSERT_EQ(m.code, 0) << m.out;
+    const std::string obj = read_file(dir / "map.obj");
+    std::vector<std::string> lines;
+    for (std::size_t at = 0, next; at < obj.size(); at = next + 1) {
+        next = obj.find('\n', at);
+        lines.push_back(obj.substr(at, next - at));
+    }
+    std::vector<std::size_t> faces;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+        if (lines[i].rfind("f ", 0) == 0) faces.push_back(i);
+    ASSERT_GT(faces.size(), 10u);
+    auto check = [&](const std::string& text) {
+        write_file(dir / "edited.obj", text);
+        return run_ctmap("check " + q(dir / "edited.obj") + " --features " + q(features) + " --image " +
+                         q(data("images/astronaut.png")) + " --json");
+    };
+    auto join = [](const std::vector<std::string>& ls) {
+        std::string s;
+        for (const std::string& l : ls) s += l + "\n";
+        return s;
+    };
+    // Two materials, the second from the middle face on: the same certificate as one material.
+    std::vector<std::string> two = lines;
+    two.insert(two.begin() + std::ptrdiff_t(faces[faces.size() / 2]), "usemtl second");
+    const RunResult a = check(join(lines)), b = check(join(two));
+    ASSERT_EQ(a.code, 0) << a.out;
+    ASSERT_EQ(b.code, 0) << b.out;
+    EXPECT_EQ(nlohmann::json::parse(a.out)["border_edges"], nlohmann::json::parse(b.out)["border_edges"]);
+    // One face flipped (two corners' vt swapped) and moved alone into a material of its own.
+    std::vector<std::string> flipped = lines;
+    std::string face = flipped[faces[5]];
+    std::istringstream words(face.substr(2));
+    std::string c0, c1, c2;
+    words >> c0 >> c1 >> c2;
+    auto vt = [](const std::string& corner) { return corner.substr(corner.find('/') + 1, corner.rfind('/') - corner.find('/') - 1); };
+    auto with_vt = [](const std::string& corner, const std::string& t) {
+        return corner.substr(0, corner.find('/') + 1) + t + corner.substr(corner.rfind('/'));
+    };
+    const std::string swapped = "f " + c0 + " " + with_vt(c1, vt(c2)) + " " + with_vt(c2, vt(c1));
+    flipped.erase(flipped.begin() + std::ptrdiff_t(faces[5]));
+    flipped.push_back("usemtl alone");
+    flipped.push_back(swapped);
+    const RunResult f = check(join(flipped));
+    EXPECT_EQ(f.code, 1) << f.out;
+    EXPECT_GE(nlohmann::json::parse(f.out)["flipped"].get<int>(), 1) << f.out;
 }
 
 }  // namespace

@@ -55,9 +55,10 @@ int check_charts(const std::string& map_path, const std::string& features_path, 
         if (!glb) {
             chart = -1;
             for (std::size_t m = 0; m < materials.size(); ++m)
-                if (materials[m].name == "chart_" + cf.name || materials[m].name == cf.name) chart = int(m);
+                if (materials[m].name == chart_material_name(cf.name)) chart = int(m);
             if (chart < 0)
-                throw BadInput(map_path, "no material chart_" + cf.name + " for chart '" + cf.name + "' of " + features_path);
+                throw BadInput(map_path, "no material " + chart_material_name(cf.name) + " for chart '" + cf.name + "' of " +
+                                             features_path + ": was this map made from these charts?");
         }
         check_features_on_mesh(cf.features, tm.mesh, map_path, snap);
         const std::vector<int> fv = feature_vertices_on_map(cf.features, tm.mesh, map_path, snap);
@@ -72,7 +73,15 @@ int check_charts(const std::string& map_path, const std::string& features_path, 
     }
     CertifyOptions opt;
     opt.feature_chart = charts;
-    const Certificate c = naming_file(map_path, [&] { return certify(tm, vertices, uvs, opt); });
+    Certificate c;
+    try {
+        c = certify(tm, vertices, uvs, opt);
+    } catch (const BadInput& e) {  // "feature i ..." by index: name it
+        std::string problem = e.problem();
+        for (std::size_t i = names.size(); i-- > 0;)
+            if (problem.rfind("feature " + std::to_string(i) + ":", 0) == 0) problem = "feature " + names[i] + problem.substr(8 + std::to_string(i).size());
+        throw BadInput(map_path, problem);
+    }
     if (as_json) {
         std::cout << certificate_to_json(c).dump(2) << "\n";
     } else {

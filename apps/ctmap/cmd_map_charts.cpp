@@ -28,14 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A chart's material name: its name with every character but letters, digits, '_' and '-'
-/// replaced (OBJ material names end at white space).
-std::string material_name(const std::string& chart) {
-    std::string out = "chart_";
-    for (char c : chart) out += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
-    return out;
-}
-
 /// A checker of `cells` x `cells` squares (the render's colours), for the faces in no chart.
 Image checker_image(int size, int cells) {
     Image img;
@@ -82,8 +74,9 @@ ChartsRun run_map_charts(const MapArgs& a) {
     check_outputs(inputs, {{a.output, "the output (-o)"}, {mtl, "the output's material file"}, {a.glb, "--glb"},
                            {a.report, "--report"}});
     for (const ChartFeatures& c : file.charts) {
-        if (!run.images.empty() && exif_orientation(read_input_file(run.images[&c - file.charts.data()], "image file")) != 1)
-            throw BadInput(run.images[&c - file.charts.data()],
+        const std::string& image = run.images[std::size_t(&c - file.charts.data())];
+        if (!image.empty() && exif_orientation(read_input_file(image, "image file")) != 1)
+            throw BadInput(image,
                            "a JPEG turned by its EXIF orientation is not available as a chart's image yet: save it "
                            "upright (as PNG) first");
         naming_file(a.features, [&] { return check_features_on_mesh(c.features, mesh, a.mesh, a.snap); });
@@ -117,7 +110,7 @@ ChartsRun run_map_charts(const MapArgs& a) {
     // Everything to temporaries first, renamed together at the end.
     OutputSet outputs;
     std::vector<ChartMaterial> materials;
-    for (std::size_t c = 0; c < charts.size(); ++c) materials.push_back({material_name(charts[c].name), run.images[c]});
+    for (std::size_t c = 0; c < charts.size(); ++c) materials.push_back({chart_material_name(charts[c].name), run.images[c]});
     // The faces in no chart: their own material, a checker written beside the OBJ.
     std::string rest_tmp;
     if (run.result.rest.faces > 0) {

@@ -190,7 +190,7 @@ Command add_morph_command(CLI::App& app) {
     sub->add_option("--obj-frames", a->obj_frames, "folder for OBJ frames frame_000.obj ... (made if missing)");
     sub->add_option("--strip", a->strip, "a PNG of the frames side by side, checker in the shared domain");
     sub->add_option("--report", a->report, "a JSON report: counts, both maps' certificates, distances, times");
-    sub->add_option("--view", a->view, "camera side of --strip: front, side, back, top, three-quarter")->capture_default_str();
+    sub->add_option("--view", a->view, "camera side of --strip: front, side, back, top, three-quarter, left, bottom")->capture_default_str();
     sub->add_flag("!--no-resample", a->resample,
                   "no overlay: the source's connectivity only, the target surface sampled at its vertices");
     sub->add_flag("!--no-align", a->align,

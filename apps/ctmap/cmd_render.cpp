@@ -118,8 +118,8 @@ Command add_render_command(CLI::App& app) {
     sub->add_option("--mode", args->mode, "textured | checker | uv | paths | triangulation")
         ->check(CLI::IsMember({"textured", "checker", "uv", "paths", "triangulation"}))
         ->capture_default_str();
-    sub->add_option("--view", args->view, "camera side for the 3D modes: front (from +z) | side | back | top | three-quarter")
-        ->check(CLI::IsMember({"front", "side", "back", "top", "three-quarter"}))
+    sub->add_option("--view", args->view, "camera side for the 3D modes: front (from +z) | side (+x) | back (-z) | top (+y) | three-quarter | left (-x) | bottom (-y)")
+        ->check(CLI::IsMember({"front", "side", "back", "top", "three-quarter", "left", "bottom"}))
         ->capture_default_str();
     sub->add_option("--size", args->size,
                     "W or WxH pixels (W alone: square in 3D; for uv and triangulation, the shown region's aspect)")

@@ -96,8 +96,9 @@ void guarded(std::mutex& m, httplib::Response& res, F&& f) {
     } catch (...) {
         reply_current_error(res);
     }
-    // The server's whole time for the request, body written included (the standard header that
-    // browsers' developer tools show; bench/serve_latency.py reads it).
+    // The server's time for the request: the wait for the session, the work, and the JSON answer
+    // built and serialised (the socket write comes after; the standard header that browsers'
+    // developer tools show; bench/serve_latency.py reads it).
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     res.set_header("Server-Timing", "handler;dur=" + std::to_string(ms));
 }

@@ -125,7 +125,10 @@ int cmd_check(const std::string& obj_path, const std::string& features_path, con
               bool as_json, double snap) {
     if (has_charts(read_input_file(features_path, "features file"), features_path))
         return cli::check_charts(obj_path, features_path, as_json, snap);
-    const TexturedMesh tm = lower_ext(obj_path) == ".glb" ? read_glb(obj_path) : read_textured_obj(obj_path);
+    TexturedMesh tm = lower_ext(obj_path) == ".glb" ? read_glb(obj_path) : read_textured_obj(obj_path);
+    // A features file without charts certifies one chart, whatever materials or primitives the
+    // file splits its faces into (a Blender OBJ with two materials is one map).
+    tm.chart.assign(tm.mesh.faces.size(), 0);
     if (tm.uvs.empty() || tm.uv_faces.size() != tm.mesh.faces.size())
         throw BadInput(obj_path, "no texture coordinates (`vt` and `f v/vt`): there is no map to check");
     FeatureSet fs = read_features(features_path);

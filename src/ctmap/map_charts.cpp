@@ -159,6 +159,14 @@ ChartsResult map_charts(const TriMesh& input, const std::vector<ChartInput>& cha
         }
     TriMesh mesh = input;
     const std::vector<int> vertex_of = place_point_features(mesh, unique, options.snap);
+    std::map<int, std::string> name_at;
+    for (std::size_t i = 0; i < unique.size(); ++i) {
+        const auto [it, fresh] = name_at.emplace(vertex_of[i], unique[i].name);
+        if (!fresh)
+            throw BadInput("", "features " + named(it->second) + " and " + named(unique[i].name) +
+                                   " are at the same mesh vertex " + std::to_string(vertex_of[i]) +
+                                   " (in different charts, a feature keeps one name)");
+    }
 
     ChartsResult out;
     if (charts.size() == 1 && charts[0].border.empty()) {

@@ -140,6 +140,17 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
             }
         }
 
+    // A chart's interior feature may not be another chart's border feature (it would lie on a
+    // seam, on no one side).
+    std::map<int, std::pair<std::string, std::string>> border_of;  // vertex -> (feature, chart)
+    for (const ChartOutline& c : charts)
+        for (std::size_t i = 0; i < c.border.size(); ++i) border_of.emplace(c.border[i], std::make_pair(c.border_names[i], c.name));
+    for (const ChartOutline& c : charts)
+        for (std::size_t i = 0; i < c.interior.size(); ++i)
+            if (const auto it = border_of.find(c.interior[i]); it != border_of.end())
+                throw BadInput("", "feature " + named(c.interior_names[i]) + " is inside chart " + named(c.name) +
+                                       " but on the border of chart " + named(it->second.second) +
+                                       ": a feature on a seam is a border feature of every chart it is in");
     const Adjacency adj(mesh);
     std::vector<char> blocked(nv, 0);
     std::map<int, std::string> feature_name;

@@ -84,7 +84,19 @@ DiscCut cut_to_disc(const TriMesh& mesh) {
         any_edge |= bool(in_graph[e]);
         if (in_graph[e] && edge_faces[e][1] >= 0) ++out.cut_edges;
     }
-    if (!any_edge) throw BadInput("", "a closed surface of genus 0 has no cut into a disc without a chart's border");
+    if (!any_edge) {
+        // A closed sphere (a piece in no chart with no border and no handle: an eyeball): a slit
+        // of two edges a - b - c opens it into a disc whose border is a, b, c, b'.
+        for (int b = 0; b < nv && !any_edge; ++b) {
+            int first = -1;
+            for (int e = 0; e < ne && !any_edge; ++e) {
+                if (edge_ends[e][0] != b && edge_ends[e][1] != b) continue;
+                if (first < 0) first = e;
+                else in_graph[first] = in_graph[e] = 1, any_edge = true, out.cut_edges = 2;
+            }
+        }
+        if (!any_edge) throw BadInput("", "a closed surface without two edges at a vertex cannot be cut open");
+    }
 
     // Split: the corners of a vertex stay one vertex across every interior edge not cut.
     UnionFind corners(3 * nf);

@@ -19,10 +19,9 @@ struct DiscCut {
 };
 
 /// Cuts `mesh` into a disc. A disc comes back as it is (no edge cut).
-/// \pre `mesh` is a connected, consistently oriented manifold with at least one border loop or a
-///      handle (a closed sphere has no cut graph: it needs a chart).
-/// \throw BadInput for a closed surface of genus 0 or several components; InternalError if the
-///        result is not a disc (a bug).
+/// A closed sphere has no such cut graph: it is opened by a slit of two edges.
+/// \pre `mesh` is a connected, consistently oriented manifold.
+/// \throw BadInput for several components; InternalError if the result is not a disc (a bug).
 DiscCut cut_to_disc(const TriMesh& mesh);
 
 }  // namespace ctmap

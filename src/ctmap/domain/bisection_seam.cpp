@@ -34,9 +34,11 @@ std::vector<int> bisection_seam_vertices(const TriMesh& mesh, int count) {
             const double reach = d[u] * std::cos(dir) + d[w] * std::sin(dir);
             if (reach > best[k]) best[k] = reach, out[k] = v;
         }
-        out.erase(std::remove(out.begin(), out.end(), -1), out.end());
-        out.erase(std::unique(out.begin(), out.end()), out.end());
-        if (out.size() > 1 && out.front() == out.back()) out.pop_back();
+        // Each vertex once (one may win several directions), in the angular order.
+        std::vector<int> kept;
+        for (int v : out)
+            if (v >= 0 && std::find(kept.begin(), kept.end(), v) == kept.end()) kept.push_back(v);
+        out = std::move(kept);
     }
     if (out.size() < 3) throw BadInput("", "no seam round the mesh's middle: fewer than 3 vertices near its plane");
     return out;

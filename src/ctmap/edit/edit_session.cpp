@@ -52,6 +52,7 @@ void EditSession::apply(FeatureSet fs, const std::string& fallback) {
     checker_ = std::move(checker);
     last_update_ = "full";
     last_fallback_ = fallback;  // only now: a refused change leaves the session as it was
+    ++mesh_revision_;
 }
 
 nlohmann::json EditSession::set_features(const std::string& document) {
@@ -119,6 +120,7 @@ nlohmann::json EditSession::answer(bool with_mesh) const {
         j["vertices"] = flat(map_->cut.mesh.positions);
         j["faces"] = flat(map_->cut.mesh.faces);
     }
+    j["mesh_revision"] = mesh_revision_;  // which cut mesh the UVs belong to (an answer without it reuses it)
     j["update"] = last_update_;  // "full": the whole pipeline; "incremental": from the previous map
     if (last_update_ == "full" && !last_fallback_.empty()) j["full_because"] = last_fallback_;
     return j;

@@ -52,7 +52,7 @@ public:
     /// cut mesh, flat u v), "vertices" (flat xyz), "faces" (flat) and "update" ("full" or
     /// "incremental"; with "full_because" when a move could not start from the last map) added;
     /// null before any map. `with_mesh` false leaves out "vertices" and "faces" (a move's answer
-    /// from the last map: its cut mesh is the previous answer's).
+    /// from the last map: its cut mesh is the one of the answer with the same "mesh_revision").
     nlohmann::json answer(bool with_mesh = true) const;
 
     /// The current features as a features document (DESIGN §4, pixels).
@@ -84,6 +84,7 @@ private:
     std::optional<FeatureLayoutChecker> checker_;
     std::string last_update_;    ///< how the last map was made: "full" or "incremental"
     std::string last_fallback_;  ///< why the last move was mapped in full (empty: it was not a move)
+    long mesh_revision_ = 0;     ///< counts the full maps: a new cut mesh each
 };
 
 }  // namespace ctmap

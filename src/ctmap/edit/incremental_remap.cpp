@@ -43,6 +43,9 @@ std::optional<MapResult> remap_moved_feature(const MapResult& previous, int feat
     };
     if (!options.refine || options.refine_mode != RefineMode::isometric) return no("no optimiser in the options");
     if (feature < 0 || feature >= int(previous.cut.feature_vertex.size())) return no("no such feature");
+    if (!(remap.region_vertices > 0 && remap.radius > 0 && remap.region >= 1 && remap.local_reach >= 0))
+        throw BadInput("", "RemapOptions: region_vertices and radius must be positive, region at least 1, "
+                           "local_reach not negative");
     MapResult r = previous;
     std::vector<int> fixed = r.cut.feature_vertex;
     if (r.auto_border_fixed) fixed.insert(fixed.end(), r.auto_border.vertex.begin(), r.auto_border.vertex.end());

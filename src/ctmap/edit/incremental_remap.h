@@ -36,6 +36,9 @@ struct RemapOptions {
 /// optimiser, a move too large for the bump, a start that is not valid, or a certificate that
 /// fails. `why` (if given) says which.
 /// \pre `previous` came from map_texture with `options`; 0 <= feature < given features.
+/// \throw BadInput for `remap` out of range (region_vertices or radius not positive, region < 1,
+///        local_reach negative). The local mode's optimiser stops by the tolerance relative to the
+///        whole map's energy (the held faces' share included), as a whole-map run would.
 std::optional<MapResult> remap_moved_feature(const MapResult& previous, int feature, const Vec2& target,
                                              const MapOptions& options, std::string* why = nullptr,
                                              const RemapOptions& remap = {});

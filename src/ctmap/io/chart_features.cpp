@@ -70,6 +70,10 @@ ChartFile parse_chart_features(const std::string& text, const std::string& path)
             problems.push_back(label + ": \"name\" must be a non-empty string");
         else if (!chart_names.insert(name_of[c] = ch["name"].get<std::string>()).second)
             problems.push_back("the chart name " + named(name_of[c]) + " is used by more than one chart");
+        else if (name_of[c].find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+                 std::string::npos)
+            problems.push_back("the chart name " + named(name_of[c]) +
+                               " may hold only letters, digits, '_' and '-' (it names the chart's material in the OBJ)");
         if (name_of[c].empty()) name_of[c] = label;
         if (!ch.contains("features") || !ch["features"].is_array()) {
             problems.push_back("chart " + named(name_of[c]) + ": \"features\" must be an array");

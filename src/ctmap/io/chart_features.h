@@ -21,6 +21,9 @@ struct ChartFeatures {
     std::vector<std::string> border;
 };
 
+/// The OBJ/glTF material of chart `name`: "chart_<name>" (the faces in no chart have "rest").
+inline std::string chart_material_name(const std::string& name) { return "chart_" + name; }
+
 /// A parsed features file with `charts`.
 struct ChartFile {
     std::string path;
@@ -32,7 +35,8 @@ struct ChartFile {
 bool has_charts(const std::string& text, const std::string& path);
 
 /// Reads and checks a features file with charts: each chart as a features file of its own
-/// (read_features' rules), chart names unique, a feature's mesh place given at least once and the
+/// (read_features' rules), chart names unique, of letters, digits, '_' and '-' (they name the
+/// OBJ's materials), a feature's mesh place given at least once and the
 /// same wherever repeated, border names known to their chart, unique, at least 3, and present in
 /// every chart but a lone one.
 /// \throw BadInput naming the file, the charts and the features of every violation.

@@ -174,7 +174,8 @@ int add_image(tinygltf::Model& m, const std::string& image) {
 void write_glb(const TexturedMesh& tm, const std::string& path, const std::vector<ChartMaterial>& materials,
                OutputSet& outputs) {
     for (int c : tm.chart)
-        if (c < 0 || c >= int(materials.size())) throw InternalError(path + ": chart " + std::to_string(c) + " has no material");
+        if (c < 0 || c >= int(materials.size()))
+            throw BadInput(path, "chart " + std::to_string(c) + " has no material (" + std::to_string(materials.size()) + " given)");
     const bool has_uv = !tm.uvs.empty();
     const GlbVertices vertices = split_vertices(tm);
     const std::vector<std::uint32_t>& idx = vertices.indices;

@@ -21,7 +21,7 @@ void write_glb(const TexturedMesh& mesh, const std::string& path, const std::str
 
 /// Same with one material per chart (issue 13): one glTF primitive per chart on shared vertex
 /// attributes, chart c (TexturedMesh::chart) with `materials[c]` and its image embedded (charts
-/// sharing an image share one copy). \pre every chart id indexes `materials`.
+/// sharing an image share one copy). \throw BadInput if a chart id does not index `materials`, as write_glb.
 void write_glb(const TexturedMesh& mesh, const std::string& path, const std::vector<ChartMaterial>& materials,
                OutputSet& outputs);
 

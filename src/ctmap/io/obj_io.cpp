@@ -61,7 +61,8 @@ void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::v
                OutputSet& outputs) {
     for (int c : tm.chart)
         if (c < 0 || c >= int(materials.size()))
-            throw InternalError(obj_path + ": chart " + std::to_string(c) + " has no material");
+            throw BadInput(obj_path, "chart " + std::to_string(c) + " has no material (" +
+                                         std::to_string(materials.size()) + " given)");
     const bool has_uv = !tm.uvs.empty();
     const fs::path obj(obj_path);
     const std::string mtl_name = obj.stem().string() + ".mtl";

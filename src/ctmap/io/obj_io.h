@@ -20,7 +20,7 @@ void write_obj(const TexturedMesh& mesh, const std::string& obj_path, const std:
 
 /// Same with one material per chart (issue 13): faces of chart c (TexturedMesh::chart) use
 /// `materials[c]`, each with its own `map_Kd`.
-/// \pre every chart id indexes `materials`.
+/// \throw BadInput if a chart id does not index `materials`; InternalError if a file cannot be written.
 void write_obj(const TexturedMesh& mesh, const std::string& obj_path, const std::vector<ChartMaterial>& materials,
                OutputSet& outputs);
 

@@ -9,6 +9,7 @@
 #include "ctmap/cut/cut_mesh.h"
 #include "ctmap/domain/auto_border.h"
 #include "ctmap/errors.h"
+#include "ctmap/io/chart_features.h"
 #include "ctmap/io/glb_io.h"
 #include "ctmap/io/image.h"
 #include "ctmap/io/mesh_topology.h"
@@ -58,7 +59,7 @@ RenderInputs read_render_inputs(const RenderFiles& files, const std::vector<Rend
         int chart = -1;
         std::string names;
         for (std::size_t c = 0; c < materials.size(); ++c) {
-            if (materials[c].name == files.chart || materials[c].name == "chart_" + files.chart) chart = int(c);
+            if (materials[c].name == files.chart || materials[c].name == chart_material_name(files.chart)) chart = int(c);
             names += (names.empty() ? "" : ", ") + materials[c].name;
         }
         if (chart < 0) throw BadInput(files.map, "no chart " + files.chart + " (its materials: " + names + ")");
@@ -74,13 +75,13 @@ RenderInputs read_render_inputs(const RenderFiles& files, const std::vector<Rend
             }
         in.mesh = std::move(one);
         mtl_image = materials[chart].image;
-    } else if (materials.size() > 1 && any(modes, {RenderMode::textured})) {
-        for (const ChartMaterial& m : materials) {
-            if (m.image.empty())
-                throw BadInput(files.map, "material " + m.name + " has no image (`map_Kd`), which --mode textured needs");
-            in.chart_images.push_back(read_image(m.image));
-        }
+    } else if (materials.size() > 1 && files.image.empty() && any(modes, {RenderMode::textured}) &&
+               std::all_of(materials.begin(), materials.end(), [](const ChartMaterial& m) { return !m.image.empty(); })) {
+        // Several charts (ctmap's charts, or any OBJ whose materials each have an image): each
+        // chart with its own image.
+        for (const ChartMaterial& m : materials) in.chart_images.push_back(read_image(m.image));
     }
+    if (in.chart_images.empty()) in.mesh.chart.assign(in.mesh.mesh.faces.size(), 0);  // one image for all
     const bool has_uv = !in.mesh.uvs.empty() && in.mesh.uv_faces.size() == in.mesh.mesh.faces.size();
     if (!has_uv && any(modes, {M::textured, M::checker, M::uv}))
         throw BadInput(files.map, "no texture coordinates (`vt` and `f v/vt`), which " +

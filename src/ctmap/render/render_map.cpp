@@ -28,11 +28,13 @@ bool is_3d(RenderMode mode) {
 }
 
 namespace {
-const std::array<std::pair<const char*, RenderView>, 5> kViews{{{"front", RenderView::front},
+const std::array<std::pair<const char*, RenderView>, 7> kViews{{{"front", RenderView::front},
                                                                  {"side", RenderView::side},
                                                                  {"back", RenderView::back},
                                                                  {"top", RenderView::top},
-                                                                 {"three-quarter", RenderView::three_quarter}}};
+                                                                 {"three-quarter", RenderView::three_quarter},
+                                                                 {"left", RenderView::left},
+                                                                 {"bottom", RenderView::bottom}}};
 const std::array<std::pair<const char*, RenderMode>, 5> kModes{{{"textured", RenderMode::textured},
                                                                  {"checker", RenderMode::checker},
                                                                  {"uv", RenderMode::uv},
@@ -228,6 +230,8 @@ Camera render_camera(const RenderScene& scene, const RenderOptions& options) {
             case RenderView::side: dir = Vec3(1, 0, 0); break;
             case RenderView::top: dir = Vec3(0, 1, 0), up = Vec3(0, 0, -1); break;
             case RenderView::three_quarter: dir = Vec3(0.7, 0.35, 1.0).normalized(); break;
+            case RenderView::left: dir = Vec3(-1, 0, 0); break;
+            case RenderView::bottom: dir = Vec3(0, -1, 0), up = Vec3(0, 0, 1); break;
         }
         const double fovy = 30.0 * M_PI / 180.0;
         // The sphere fits when its angular radius is below the smaller half field of view.
@@ -728,6 +732,9 @@ Image render_map(const RenderScene& scene, const RenderOptions& options) {
         fill(surface, mesh_vertices(*scene.mesh, mode == RenderMode::paths));
         if (mode == RenderMode::textured && !scene.chart_images.empty()) {
             // Several charts (issue 13): each chart's faces with its own image.
+            for (int c : scene.mesh->chart)
+                if (c < 0 || c >= int(scene.chart_images.size()) || !scene.chart_images[std::size_t(c)])
+                    throw BadInput("", "chart " + std::to_string(c) + " has no image to draw it with");
             for (const Image* img : scene.chart_images) {
                 chart_textures.push_back(std::make_unique<Texture>());
                 upload_texture(*chart_textures.back(), *img, false);
@@ -785,7 +792,7 @@ Image render_map(const RenderScene& scene, const RenderOptions& options) {
         for (std::size_t f = 0; f < chart.size();) {
             std::size_t g = f;
             while (g < chart.size() && chart[g] == chart[f]) ++g;
-            glBindTexture(GL_TEXTURE_2D, chart_textures.at(std::size_t(chart[f]))->id);
+            glBindTexture(GL_TEXTURE_2D, chart_textures[std::size_t(chart[f])]->id);
             glDrawArrays(GL_TRIANGLES, GLint(3 * f), GLsizei(3 * (g - f)));
             f = g;
         }

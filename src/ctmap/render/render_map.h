@@ -19,8 +19,9 @@ namespace ctmap {
 
 /// Where the camera looks from (3D modes). The mesh's own axes: front looks along -z from +z
 /// with +y up (the OBJ convention, and nefertiti's face), side from +x, back from -z, top from
-/// +y with -z up, three-quarter from between front, side and a little above.
-enum class RenderView { front, side, back, top, three_quarter };
+/// +y with -z up, three-quarter from between front, side and a little above; left from -x, bottom
+/// from -y with +z up (the other halves of a closed mesh's two charts, issue 13).
+enum class RenderView { front, side, back, top, three_quarter, left, bottom };
 
 /// What is drawn.
 enum class RenderMode {
