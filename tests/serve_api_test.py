@@ -133,10 +133,10 @@ try:
                 check(after_state["map"]["uv"] == answer["uv"], f"move {k}: the state's UVs are not the answer's")
                 check(answer["mesh_revision"] == before_state["map"]["mesh_revision"],
                       f"move {k}: an answer without its mesh names another mesh revision")
+                answer = dict(answer, faces=after_state["map"]["faces"])
             else:
                 check(answer["mesh_revision"] == (before_state["map"] or {}).get("mesh_revision", 0) + 1,
                       f"move {k}: a full answer does not name a new mesh revision")
-                answer = dict(answer, faces=after_state["map"]["faces"])
             verify_map(answer, feats, W, H, f"move {k}")
             if mapped % 10 == 1 or k == moves - 1:
                 full = full_map_sd(feats, W, H, k)
