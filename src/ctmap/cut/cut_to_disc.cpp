@@ -6,21 +6,9 @@
 #include "ctmap/cut/work_mesh.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/mesh_topology.h"
+#include "ctmap/union_find.h"
 
 namespace ctmap {
-namespace {
-
-struct UnionFind {
-    std::vector<int> parent;
-    explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    int find(int x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    }
-    void unite(int a, int b) { parent[find(a)] = find(b); }
-};
-
-}  // namespace
 
 DiscCut cut_to_disc(const TriMesh& mesh) {
     const int nv = mesh.num_vertices(), nf = mesh.num_faces();

@@ -9,19 +9,10 @@
 #include <unordered_set>
 
 #include "ctmap/errors.h"
+#include "ctmap/union_find.h"
 
 namespace ctmap {
 namespace {
-
-struct UnionFind {
-    std::vector<int> parent;
-    explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    int find(int a) {
-        while (parent[a] != a) a = parent[a] = parent[parent[a]];
-        return a;
-    }
-    void unite(int a, int b) { parent[find(a)] = find(b); }
-};
 
 std::uint64_t edge_key(int a, int b) {
     if (a > b) std::swap(a, b);
@@ -138,7 +129,10 @@ MeshTopology compute_topology(const TriMesh& mesh) {
     return t;
 }
 
-void require_disc(const MeshTopology& t, const std::string& file) {
+namespace {
+
+/// What keeps `t` from being a clean manifold (and, with `disc`, a disc), for the messages.
+void require(const MeshTopology& t, const std::string& file, bool disc) {
     std::vector<std::string> problems;
     if (t.non_manifold_edges)
         problems.push_back(std::to_string(t.non_manifold_edges) + " non-manifold edge(s) (more than two faces)");
@@ -146,35 +140,31 @@ void require_disc(const MeshTopology& t, const std::string& file) {
         problems.push_back(std::to_string(t.non_manifold_vertices) + " non-manifold vertex(es) (faces meet at a point)");
     if (t.inconsistent_edges)
         problems.push_back(std::to_string(t.inconsistent_edges) + " edge(s) between oppositely oriented faces");
-    if (t.components != 1) problems.push_back(std::to_string(t.components) + " connected components (need 1)");
-    if (t.border_loops == 0) problems.push_back("no border: the mesh is closed and needs a seam (cut it open first)");
-    else if (t.border_loops > 1)
-        problems.push_back(std::to_string(t.border_loops) + " border loops (a disc has 1; fill the holes)");
-    if (problems.empty() && t.euler != 1)
-        problems.push_back("Euler characteristic " + std::to_string(t.euler) + " (a disc has 1: the mesh has handles)");
+    if (disc) {
+        if (t.components != 1) problems.push_back(std::to_string(t.components) + " connected components (need 1)");
+        if (t.border_loops == 0)
+            problems.push_back("no border: the mesh is closed and needs seams (a features file with charts, README "
+                               "\"Charts\"; or cut it open first)");
+        else if (t.border_loops > 1)
+            problems.push_back(std::to_string(t.border_loops) +
+                               " border loops (a disc has 1; give a features file with charts, or fill the holes)");
+        if (problems.empty() && t.euler != 1)
+            problems.push_back("Euler characteristic " + std::to_string(t.euler) +
+                               " (a disc has 1: the mesh has handles; give a features file with charts)");
+    }
     if (t.isolated_vertices) problems.push_back(std::to_string(t.isolated_vertices) + " isolated vertex(es) used by no face");
     if (t.degenerate_faces) problems.push_back(std::to_string(t.degenerate_faces) + " degenerate face(s) (zero area)");
     if (problems.empty()) return;
-    std::string msg = "the mesh is not a clean topological disc: ";
+    std::string msg = disc ? "the mesh is not a clean topological disc: " : "the mesh is not a clean oriented manifold: ";
     for (std::size_t i = 0; i < problems.size(); ++i) msg += (i ? "; " : "") + problems[i];
     throw TopologyError(file, msg);
 }
 
-void require_manifold(const MeshTopology& t, const std::string& file) {
-    std::vector<std::string> problems;
-    if (t.non_manifold_edges)
-        problems.push_back(std::to_string(t.non_manifold_edges) + " non-manifold edge(s) (more than two faces)");
-    if (t.non_manifold_vertices)
-        problems.push_back(std::to_string(t.non_manifold_vertices) + " non-manifold vertex(es) (faces meet at a point)");
-    if (t.inconsistent_edges)
-        problems.push_back(std::to_string(t.inconsistent_edges) + " edge(s) between oppositely oriented faces");
-    if (t.isolated_vertices) problems.push_back(std::to_string(t.isolated_vertices) + " isolated vertex(es) used by no face");
-    if (t.degenerate_faces) problems.push_back(std::to_string(t.degenerate_faces) + " degenerate face(s) (zero area)");
-    if (problems.empty()) return;
-    std::string msg = "the mesh is not a clean oriented manifold: ";
-    for (std::size_t i = 0; i < problems.size(); ++i) msg += (i ? "; " : "") + problems[i];
-    throw TopologyError(file, msg);
-}
+}  // namespace
+
+void require_disc(const MeshTopology& t, const std::string& file) { require(t, file, true); }
+
+void require_manifold(const MeshTopology& t, const std::string& file) { require(t, file, false); }
 
 std::string topology_to_json(const MeshTopology& t) {
     nlohmann::ordered_json j;
