@@ -6,7 +6,11 @@
 #include <sstream>
 
 #include "ctmap/certify/certificate.h"
+#include "ctmap/domain/bisection_seam.h"
 #include "ctmap/io/obj_io.h"
+#include "ctmap/io/read_mesh.h"
+
+#include <cmath>
 #include "test_support.h"
 
 namespace ctmap::test {
@@ -169,6 +173,38 @@ TEST(BadInputCharts, OneVertexUnderTwoNames) {
                        chart(j, "back")["features"].push_back(f);
                    },
                    {"'alias'", "same mesh vertex"});
+}
+
+TEST(BadInputCharts, MapRefusesASeamThroughAHandle) {
+    // Two charts on the elk (genus 1) bounded by a loop round its middle that a handle passes
+    // through: neither side is a disc. Written by hand (starter-features refuses it too).
+    TempDir dir;
+    const TriMesh elk = read_mesh(data("meshes/elk.off"));
+    const std::vector<int> seam = bisection_seam_vertices(elk, 8);
+    json j;
+    j["units"] = "pixels";
+    for (const char* name : {"front", "back"}) {
+        json c;
+        c["name"] = name;
+        c["image_size"] = {512, 512};
+        c["features"] = json::array();
+        c["border"] = json::array();
+        for (std::size_t i = 0; i < seam.size(); ++i) {
+            const double a = 2 * M_PI * double(i) / double(seam.size()) * (std::string(name) == "front" ? 1 : -1);
+            c["features"].push_back({{"name", "seam" + std::to_string(i)}, {"vertex", seam[i]},
+                                     {"image", {256 + 200 * std::cos(a), 256 - 200 * std::sin(a)}}});
+            c["border"].push_back("seam" + std::to_string(i));
+        }
+        j["charts"].push_back(c);
+    }
+    write_file(dir / "elk.json", j.dump(2));
+    const RunResult m = run_ctmap("map " + q(data("meshes/elk.off")) + " " + q(dir / "elk.json") + " -o " + q(dir / "map.obj"));
+    EXPECT_EQ(m.code, 2) << m.out;
+    EXPECT_NE(m.out.find("elk.json"), std::string::npos) << m.out;
+    EXPECT_NE(m.out.find("not a disc"), std::string::npos) << m.out;
+    EXPECT_NE(m.out.find("chart 'front'"), std::string::npos) << m.out;
+    EXPECT_EQ(dir.count(), 1) << m.out;
+    std::printf("refused: %s", m.out.c_str());
 }
 
 TEST(BadInputCharts, RegionIsNotADisc) {
