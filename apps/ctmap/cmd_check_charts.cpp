@@ -86,7 +86,7 @@ int check_charts(const std::string& map_path, const std::string& features_path, 
         std::cout << certificate_to_json(c).dump(2) << "\n";
     } else {
         std::cout << map_path << ": " << (c.valid ? "valid" : "INVALID") << " (" << c.triangles << " triangles, "
-                  << file.charts.size() << " charts, " << vertices.size() << " feature occurrences)\n"
+                  << file.charts.size() << (file.charts.size() == 1 ? " chart, " : " charts, ") << vertices.size() << " feature occurrences)\n"
                   << "  flipped " << c.flipped << ", degenerate " << c.degenerate << ", feature error "
                   << c.feature_max_error << (c.worst_feature >= 0 ? " (" + names[c.worst_feature] + ")" : "")
                   << ", every chart's border "

@@ -90,7 +90,7 @@ ChartsRun run_map_charts(const MapArgs& a) {
         charts.push_back(std::move(in));
     }
     if (!a.quiet) {
-        std::cout << "ctmap map: " << a.mesh << " with " << charts.size() << " charts:";
+        std::cout << "ctmap map: " << a.mesh << " with " << charts.size() << (charts.size() == 1 ? " chart:" : " charts:");
         for (std::size_t c = 0; c < charts.size(); ++c)
             std::cout << (c ? ";" : "") << " '" << charts[c].name << "' " << charts[c].features.size() << " features on "
                       << (run.images[c].empty() ? std::string("a") : run.images[c]) << " (" << run.sizes[c][0] << " x "
