@@ -192,8 +192,12 @@ void print_map_summary(const MapArgs& a, const MapRun& run, std::ostream& os) {
 Command add_map_command(CLI::App& app) {
     auto args = std::make_shared<MapArgs>();
     auto* sub = app.add_subcommand(
-        "map", "Map a disc mesh onto an image with every feature exact and no flipped triangle (OBJ + MTL, GLB, report)");
-    sub->add_option("MESH", args->mesh, "mesh file (OFF, OBJ, PLY, STL), a topological disc")->required();
+        "map", "Map a mesh onto an image (or several: a features file with charts) with every feature exact and no "
+               "flipped triangle (OBJ + MTL, GLB, report)");
+    sub->add_option("MESH", args->mesh,
+                    "mesh file (OFF, OBJ, PLY, STL): a topological disc, or with a features file with charts any "
+                    "oriented manifold (closed, several border loops, handles; README \"Charts\")")
+        ->required();
     sub->add_option("FEATURES", args->features, "features.json: the same features on the mesh and the image (README, features.json)")
         ->required();
     sub->add_option("-o,--output", args->output, "the map as OBJ; its MTL is written beside it")->required();
