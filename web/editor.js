@@ -188,11 +188,14 @@ function drawList() {
   }
 }
 
-function showMap(answer) {
-  // A move's answer from the last map leaves out the cut mesh: it is the previous answer's.
-  if (!answer.faces && map) {
-    answer.vertices = map.vertices;
-    answer.faces = map.faces;
+async function showMap(answer) {
+  // A move's answer from the last map leaves out the cut mesh: it is the one of the answer with
+  // the same mesh_revision (ours, unless another page re-mapped in between: then the state's).
+  if (!answer.faces) {
+    let from = map;
+    if (!from || from.mesh_revision !== answer.mesh_revision) from = (await api('GET', '/api/state')).map;
+    answer.vertices = from.vertices;
+    answer.faces = from.faces;
   }
   map = answer;
   setGeometry(answer.vertices, answer.faces, answer.uv);
@@ -206,7 +209,7 @@ function showMap(answer) {
 // Sends a whole features list; on success it becomes the page's.
 async function putFeatures(next, what) {
   try {
-    showMap(await api('PUT', '/api/features', { units: 'pixels', features: next }));
+    await showMap(await api('PUT', '/api/features', { units: 'pixels', features: next }));
     features = next;
     status(what, true);
   } catch (err) {
@@ -258,7 +261,7 @@ function sendMove(final, d = drag) {
   const at = d.at.slice();
   moveChain = moveChain.then(async () => {
     try {
-      showMap(await api('POST', '/api/move', { name: d.name, image: at }));
+      await showMap(await api('POST', '/api/move', { name: d.name, image: at }));
       features = features.map((f) => (f.name === d.name ? { ...f, image: at } : f));
       status(`moved ${d.name}`, true);
     } catch (err) {
@@ -302,7 +305,7 @@ const ready = (async () => {
   features = s.features.features;
   img.src = '/api/image';
   await img.decode();
-  if (s.map) showMap(s.map);
+  if (s.map) await showMap(s.map);
   else setGeometry(s.mesh.vertices, s.mesh.faces, null);
   fitCamera();
   drawOverlay();
