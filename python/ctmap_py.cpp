@@ -132,7 +132,7 @@ py::dict map_texture_py(const Doubles& V, const Ints& F, const py::list& feature
                         const std::string& units, const std::string& refine, const std::string& border,
                         const std::string& border_mode, int iterations, double tolerance, double snap) {
     const TriMesh mesh = mesh_from(V, F);
-    require_disc(compute_topology(mesh), "the mesh (V, F)");
+    require_disc(compute_topology(mesh), "the mesh (V, F)", NotDiscAdvice::cut_open);
     const std::vector<MapFeature> fs = features_from(features, units, image_size);
     if (refine != "isometric" && refine != "paper" && refine != "none")
         throw BadInput("refine", "must be \"isometric\", \"paper\" or \"none\"");

@@ -513,6 +513,16 @@ TEST(BadInputLibrary, NonDiscsThrowTopologyError) {
               std::string::npos);
     const std::string nef = data("meshes/nefertiti.off");
     EXPECT_NO_THROW(require_disc(compute_topology(read_mesh(nef)), nef));
+    // The advice depends on the command: map takes charts, serve/morph/Python one chart only.
+    const std::string head = data("meshes/head.off");
+    const MeshTopology ht = compute_topology(read_mesh(head));
+    const std::string with_charts = expect_throws<TopologyError>([&] { require_disc(ht, head); }).problem();
+    EXPECT_NE(with_charts.find("give a features file with charts"), std::string::npos) << with_charts;
+    const std::string one_chart =
+        expect_throws<TopologyError>([&] { require_disc(ht, head, NotDiscAdvice::cut_open); }).problem();
+    EXPECT_NE(one_chart.find("3 border loops"), std::string::npos) << one_chart;
+    EXPECT_NE(one_chart.find("this command takes one chart: fill the holes"), std::string::npos) << one_chart;
+    EXPECT_EQ(one_chart.find("give a features file"), std::string::npos) << one_chart;
 }
 
 TEST(BadInputLibrary, FeaturesImagesObjAndOutputsThrowBadInput) {

@@ -59,6 +59,14 @@ TEST(ChartsCli, StarterMapCheckAndRenderOnClosedMeshes) {
         const json charts = make_starter(dir, mesh);
         ASSERT_EQ(charts["charts"].size(), 2u);
         const std::string before = read_file(dir / "charts.json");
+        // validate says yes to what map takes, writes nothing, and names both charts.
+        const int files = dir.count();
+        const RunResult v = run_ctmap("validate " + q(data(std::string("meshes/") + mesh + ".off")) + " " +
+                                      q(dir / "charts.json"));
+        EXPECT_EQ(v.code, 0) << v.out;
+        for (const char* w : {"oriented manifold", "2 charts", "chart 'front'", "chart 'back'", "patches"})
+            EXPECT_NE(v.out.find(w), std::string::npos) << "no \"" << w << "\" in: " << v.out;
+        EXPECT_EQ(dir.count(), files) << v.out;
         const RunResult m = run_ctmap("map " + q(data(std::string("meshes/") + mesh + ".off")) + " " + q(dir / "charts.json") +
                                       " -o " + q(dir / "map.obj") + " --glb " + q(dir / "map.glb") + " --report " +
                                       q(dir / "report.json"));
@@ -89,7 +97,26 @@ TEST(ChartsCli, StarterMapCheckAndRenderOnClosedMeshes) {
     }
 }
 
-/// A charts file changed by `edit`, mapped: exit 2, the message holds every word of `expect`,
+/// The last non-empty line of a program's output (its error message).
+std::string last_line(const std::string& out) {
+    std::string s = out;
+    while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
+    const std::size_t nl = s.rfind('\n');
+    return nl == std::string::npos ? s : s.substr(nl + 1);
+}
+
+/// `ctmap validate` on a refused charts file: exit 2 with map's own message, nothing written
+/// (issue 17: validate and map run the same checks).
+void expect_validate_agrees(const std::string& mesh, const std::string& features, const RunResult& map,
+                            const TempDir& dir) {
+    const int files = dir.count();
+    const RunResult v = run_ctmap("validate " + q(mesh) + " " + q(features));
+    EXPECT_EQ(v.code, 2) << v.out;
+    EXPECT_EQ(last_line(v.out), last_line(map.out)) << "validate and map disagree";
+    EXPECT_EQ(dir.count(), files) << v.out;
+}
+
+/// A charts file changed by `edit`, mapped and validated: exit 2, the message holds every word of `expect`,
 /// nothing written.
 void expect_refused(const std::string& mesh, const std::function<void(json&)>& edit,
                     const std::vector<std::string>& expect) {
@@ -104,6 +131,7 @@ void expect_refused(const std::string& mesh, const std::function<void(json&)>& e
     for (const std::string& w : expect) EXPECT_NE(m.out.find(w), std::string::npos) << "no \"" << w << "\" in: " << m.out;
     EXPECT_NE(m.out.find("bad.json"), std::string::npos) << m.out;
     EXPECT_EQ(dir.count(), files) << "an output was left: " << m.out;
+    expect_validate_agrees(data("meshes/" + mesh + ".off"), dir / "bad.json", m, dir);
     std::printf("refused: %s", m.out.c_str());
 }
 
@@ -204,6 +232,7 @@ TEST(BadInputCharts, MapRefusesASeamThroughAHandle) {
     EXPECT_NE(m.out.find("not a disc"), std::string::npos) << m.out;
     EXPECT_NE(m.out.find("chart 'front'"), std::string::npos) << m.out;
     EXPECT_EQ(dir.count(), 1) << m.out;
+    expect_validate_agrees(data("meshes/elk.off"), dir / "elk.json", m, dir);
     std::printf("refused: %s", m.out.c_str());
 }
 

@@ -52,6 +52,35 @@ std::string fixed(double x, int digits) {
 
 }  // namespace
 
+ChartsInputs read_charts_inputs(const std::string& mesh_path, const std::string& features_path, double snap,
+                                const std::vector<NamedPath>& outputs) {
+    ChartsInputs in;
+    in.mesh = read_mesh(mesh_path);
+    require_manifold(compute_topology(in.mesh), mesh_path);
+    ChartFile file = read_chart_features(features_path);
+    in.images = resolve_chart_images(file, in.sizes);
+    std::vector<NamedPath> inputs{{mesh_path, "the mesh"}, {features_path, "the features file"}};
+    for (std::size_t c = 0; c < in.images.size(); ++c)
+        inputs.push_back({in.images[c], "the image of chart '" + file.charts[c].name + "'"});
+    check_outputs(inputs, outputs);
+    for (std::size_t c = 0; c < file.charts.size(); ++c) {
+        const std::string& image = in.images[c];
+        if (!image.empty() && exif_orientation(read_input_file(image, "image file")) != 1)
+            throw BadInput(image,
+                           "a JPEG turned by its EXIF orientation is not available as a chart's image yet: save it "
+                           "upright (as PNG) first");
+        naming_file(features_path, [&] { return check_features_on_mesh(file.charts[c].features, in.mesh, mesh_path, snap); });
+    }
+    for (std::size_t c = 0; c < file.charts.size(); ++c) {
+        ChartInput ci;
+        ci.name = file.charts[c].name;
+        ci.features = map_features(file.charts[c].features, in.sizes[c][0], in.sizes[c][1]);
+        ci.border = file.charts[c].border;
+        in.charts.push_back(std::move(ci));
+    }
+    return in;
+}
+
 ChartsRun run_map_charts(const MapArgs& a) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
@@ -63,32 +92,14 @@ ChartsRun run_map_charts(const MapArgs& a) {
     check_outputs({{a.mesh, "the mesh"}, {a.features, "the features file"}},
                   {{a.output, "the output (-o)"}, {mtl, "the output's material file"}, {a.glb, "--glb"},
                    {a.report, "--report"}});
-    const TriMesh mesh = read_mesh(a.mesh);
-    require_manifold(compute_topology(mesh), a.mesh);
-    ChartFile file = read_chart_features(a.features);
+    ChartsInputs in = read_charts_inputs(a.mesh, a.features, a.snap,
+                                         {{a.output, "the output (-o)"}, {mtl, "the output's material file"},
+                                          {a.glb, "--glb"}, {a.report, "--report"}});
+    const TriMesh& mesh = in.mesh;
+    const std::vector<ChartInput>& charts = in.charts;
     ChartsRun run;
-    run.images = resolve_chart_images(file, run.sizes);
-    std::vector<NamedPath> inputs{{a.mesh, "the mesh"}, {a.features, "the features file"}};
-    for (std::size_t c = 0; c < run.images.size(); ++c)
-        inputs.push_back({run.images[c], "the image of chart '" + file.charts[c].name + "'"});
-    check_outputs(inputs, {{a.output, "the output (-o)"}, {mtl, "the output's material file"}, {a.glb, "--glb"},
-                           {a.report, "--report"}});
-    for (const ChartFeatures& c : file.charts) {
-        const std::string& image = run.images[std::size_t(&c - file.charts.data())];
-        if (!image.empty() && exif_orientation(read_input_file(image, "image file")) != 1)
-            throw BadInput(image,
-                           "a JPEG turned by its EXIF orientation is not available as a chart's image yet: save it "
-                           "upright (as PNG) first");
-        naming_file(a.features, [&] { return check_features_on_mesh(c.features, mesh, a.mesh, a.snap); });
-    }
-    std::vector<ChartInput> charts;
-    for (std::size_t c = 0; c < file.charts.size(); ++c) {
-        ChartInput in;
-        in.name = file.charts[c].name;
-        in.features = map_features(file.charts[c].features, run.sizes[c][0], run.sizes[c][1]);
-        in.border = file.charts[c].border;
-        charts.push_back(std::move(in));
-    }
+    run.images = in.images;
+    run.sizes = in.sizes;
     if (!a.quiet) {
         std::cout << "ctmap map: " << a.mesh << " with " << charts.size() << (charts.size() == 1 ? " chart:" : " charts:");
         for (std::size_t c = 0; c < charts.size(); ++c)
@@ -152,9 +163,9 @@ ChartsRun run_map_charts(const MapArgs& a) {
         j["charts"] = nlohmann::json::array();
         for (std::size_t c = 0; c < charts.size(); ++c) {
             const ChartMap& cm = run.result.charts[c];
-            MapReportInputs in{a.mesh, a.features, run.images[c], run.sizes[c][0], run.sizes[c][1],
+            MapReportInputs report_in{a.mesh, a.features, run.images[c], run.sizes[c][0], run.sizes[c][1],
                                int(cm.result.cut.num_input_vertices), 0};
-            nlohmann::json chart = map_report(cm.result, in);
+            nlohmann::json chart = map_report(cm.result, report_in);
             chart["name"] = cm.name;
             chart["material"] = materials[c].name;
             chart["faces"] = cm.faces.size();
@@ -192,6 +203,38 @@ void print_charts_summary(const MapArgs&, const ChartsRun& run, std::ostream& os
        << ", total " << fixed(t.total, 1) << "\n  wrote";
     for (const std::string& f : run.written) os << " " << f;
     os << "\n";
+}
+
+int validate_charts(const std::string& mesh_path, const std::string& features_path, const std::string& image_arg,
+                    double snap, const std::string& border) {
+    if (!image_arg.empty())
+        throw BadInput(features_path, "--image cannot be used with charts: each chart names its own \"image\"");
+    const ChartsInputs in = read_charts_inputs(mesh_path, features_path, snap);
+    const MeshTopology t = compute_topology(in.mesh);
+    MapOptions options;
+    options.snap = snap;
+    options.auto_border = border == "auto";
+    options.refine = false;  // the checks are the cut's and the layout's; the bare embedding is certified
+    options.refine_mode = RefineMode::paper;
+    const ChartsResult r = naming_file(features_path, [&] { return map_charts(in.mesh, in.charts, options); });
+    std::cout << "ok: " << mesh_path << " is an oriented manifold (" << t.vertices << " vertices, " << t.faces
+              << " faces, " << t.border_loops << " border loop(s), Euler characteristic " << t.euler << "); "
+              << in.charts.size() << (in.charts.size() == 1 ? " chart in " : " charts in ") << features_path << "\n";
+    for (std::size_t c = 0; c < r.charts.size(); ++c) {
+        const ChartMap& cm = r.charts[c];
+        std::cout << "  chart '" << cm.name << "': " << in.charts[c].features.size() << " features on "
+                  << (in.images[c].empty() ? std::string("a") : in.images[c]) << " (" << in.sizes[c][0] << " x "
+                  << in.sizes[c][1] << "), " << cm.result.triangulation.triangles.size() << " patches, "
+                  << cm.faces.size() << " faces\n";
+        if (!cm.result.auto_border.vertex.empty())
+            std::cout << "    border: `ctmap map` adds " << cm.result.auto_border.vertex.size() << " border feature(s) ("
+                      << cm.result.auto_border.reason << ")\n";
+    }
+    if (r.rest.faces > 0)
+        std::cout << "  the rest: " << r.rest.faces << " faces in no chart, mapped automatically (" << r.rest.pieces
+                  << " piece(s))\n";
+    std::cout << "  " << r.seams.size() << " seam pieces\n";
+    return 0;
 }
 
 }  // namespace ctmap::cli

@@ -148,7 +148,7 @@ int run_serve(const ServeArgs& a) {
         throw BadInput(a.host, "--host must be a host name or an IP address");
     const std::string web = find_web_root(a.web);
     const TriMesh mesh = read_mesh(a.mesh);
-    require_disc(compute_topology(mesh), a.mesh);
+    require_disc(compute_topology(mesh), a.mesh, NotDiscAdvice::cut_open);
     const Image img = read_image(a.image);
     std::optional<FeatureSet> initial;
     std::string features_path = a.features;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "ctmap/io/output_paths.h"
 #include "ctmap/map_charts.h"
 #include "ctmap/map_texture.h"
 
@@ -79,6 +80,25 @@ struct ChartsRun {
     std::vector<std::array<int, 2>> sizes;  ///< per chart, its image's width and height
     std::vector<std::string> written;     ///< the files written, in order
 };
+
+/// A charts map's inputs, read and checked as `ctmap map` and `ctmap validate` both need them.
+struct ChartsInputs {
+    TriMesh mesh;
+    std::vector<ChartInput> charts;         ///< per chart, its features with UVs and its border
+    std::vector<std::string> images;        ///< per chart, its image (empty when only image_size was given)
+    std::vector<std::array<int, 2>> sizes;  ///< per chart, its image's width and height
+};
+
+/// Reads the mesh (any oriented manifold) and the features file with charts, resolves each
+/// chart's image and checks every feature on the mesh (`snap` as --snap) and that no path of
+/// `outputs` is an input. \throw BadInput / TopologyError naming the file and the problem.
+ChartsInputs read_charts_inputs(const std::string& mesh_path, const std::string& features_path, double snap,
+                                const std::vector<NamedPath>& outputs = {});
+
+/// `ctmap validate` for a features file with charts: every check `ctmap map` makes (the seams,
+/// each chart's region and layout, run as map does it), nothing written. Exit 0, or throws as map.
+int validate_charts(const std::string& mesh_path, const std::string& features_path, const std::string& image_arg,
+                    double snap, const std::string& border);
 
 /// `ctmap map` for a features file with charts: map_charts, then OBJ + MTL with a material per
 /// chart (+ GLB with a primitive per chart, report) written together. \throw as run_map.

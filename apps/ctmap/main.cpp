@@ -80,6 +80,8 @@ int cmd_info(const std::string& mesh_path, bool as_json) {
 /// every interior feature).
 int cmd_validate(const std::string& mesh_path, const std::string& features_path, const std::string& image_arg,
                  double snap, const std::string& border) {
+    if (has_charts(read_input_file(features_path, "features file"), features_path))
+        return cli::validate_charts(mesh_path, features_path, image_arg, snap, border);
     const TriMesh mesh = read_mesh(mesh_path);
     const MeshTopology t = compute_topology(mesh);
     require_disc(t, mesh_path);
@@ -225,7 +227,7 @@ int run(int argc, char** argv) {
     info->add_flag("--json", as_json, "print JSON (keys: vertices, faces, components, border_loops, euler, ...)");
 
     auto* validate = app.add_subcommand("validate", "Check a mesh, a features file and an image before mapping");
-    validate->add_option("MESH", mesh_path, "mesh file (a topological disc)")->required();
+    validate->add_option("MESH", mesh_path, "mesh file: a topological disc, or any oriented manifold with a features file with charts")->required();
     validate->add_option("FEATURES", features_path, "features.json: the same features on the mesh and the image (README)")->required();
     validate->add_option("--image", image_arg, "texture image (PNG/JPEG); overrides the features file's \"image\"");
     validate->add_option("--snap", snap, snap_help)->check(CLI::NonNegativeNumber);

@@ -132,7 +132,7 @@ MeshTopology compute_topology(const TriMesh& mesh) {
 namespace {
 
 /// What keeps `t` from being a clean manifold (and, with `disc`, a disc), for the messages.
-void require(const MeshTopology& t, const std::string& file, bool disc) {
+void require(const MeshTopology& t, const std::string& file, bool disc, NotDiscAdvice advice) {
     std::vector<std::string> problems;
     if (t.non_manifold_edges)
         problems.push_back(std::to_string(t.non_manifold_edges) + " non-manifold edge(s) (more than two faces)");
@@ -141,16 +141,23 @@ void require(const MeshTopology& t, const std::string& file, bool disc) {
     if (t.inconsistent_edges)
         problems.push_back(std::to_string(t.inconsistent_edges) + " edge(s) between oppositely oriented faces");
     if (disc) {
+        const bool charts = advice == NotDiscAdvice::charts;
         if (t.components != 1) problems.push_back(std::to_string(t.components) + " connected components (need 1)");
         if (t.border_loops == 0)
-            problems.push_back("no border: the mesh is closed and needs seams (a features file with charts, README "
-                               "\"Charts\"; or cut it open first)");
+            problems.push_back(charts ? "no border: the mesh is closed and needs seams (a features file with charts, "
+                                        "README \"Charts\"; or cut it open first)"
+                                      : "no border: the mesh is closed (this command takes one chart, a disc: cut it "
+                                        "open first, or map it with charts by `ctmap map`)");
         else if (t.border_loops > 1)
             problems.push_back(std::to_string(t.border_loops) +
-                               " border loops (a disc has 1; give a features file with charts, or fill the holes)");
+                               (charts ? " border loops (a disc has 1; give a features file with charts, or fill the holes)"
+                                       : " border loops (a disc has 1; this command takes one chart: fill the holes, or "
+                                         "map it with charts by `ctmap map`)"));
         if (problems.empty() && t.euler != 1)
             problems.push_back("Euler characteristic " + std::to_string(t.euler) +
-                               " (a disc has 1: the mesh has handles; give a features file with charts)");
+                               (charts ? " (a disc has 1: the mesh has handles; give a features file with charts)"
+                                       : " (a disc has 1: the mesh has handles; this command takes one chart: map it "
+                                         "with charts by `ctmap map`)"));
     }
     if (t.isolated_vertices) problems.push_back(std::to_string(t.isolated_vertices) + " isolated vertex(es) used by no face");
     if (t.degenerate_faces) problems.push_back(std::to_string(t.degenerate_faces) + " degenerate face(s) (zero area)");
@@ -162,9 +169,11 @@ void require(const MeshTopology& t, const std::string& file, bool disc) {
 
 }  // namespace
 
-void require_disc(const MeshTopology& t, const std::string& file) { require(t, file, true); }
+void require_disc(const MeshTopology& t, const std::string& file, NotDiscAdvice advice) {
+    require(t, file, true, advice);
+}
 
-void require_manifold(const MeshTopology& t, const std::string& file) { require(t, file, false); }
+void require_manifold(const MeshTopology& t, const std::string& file) { require(t, file, false, NotDiscAdvice::charts); }
 
 std::string topology_to_json(const MeshTopology& t) {
     nlohmann::ordered_json j;

@@ -32,9 +32,13 @@ struct MeshTopology {
 /// \pre every face index is in range (as `read_mesh` guarantees).
 MeshTopology compute_topology(const TriMesh& mesh);
 
+/// What a "not a disc" message advises: `charts` where the command accepts a features file with
+/// charts (`map`, `validate`), `cut_open` where it takes one chart only (`serve`, `morph`, Python).
+enum class NotDiscAdvice { charts, cut_open };
+
 /// Checks that `mesh` is a topological disc with no degenerate face, as the constrained map needs.
-/// \throw TopologyError naming `file` and every problem found (and what to do about it).
-void require_disc(const MeshTopology& topo, const std::string& file);
+/// \throw TopologyError naming `file` and every problem found (and what to do about it, per `advice`).
+void require_disc(const MeshTopology& topo, const std::string& file, NotDiscAdvice advice = NotDiscAdvice::charts);
 
 /// Checks that `mesh` is a consistently oriented manifold with no degenerate face or isolated
 /// vertex, of any genus and with any number of border loops (several charts, issue 13).

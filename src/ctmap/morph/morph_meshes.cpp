@@ -20,13 +20,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-/// A morph needs two discs until charts land (issue 13).
+/// A morph needs two discs: charts are built into `map`, not yet into the morph (issue 13).
 void require_morph_disc(const TriMesh& mesh, const std::string& file) {
     const MeshTopology topo = compute_topology(mesh);
     if (topo.is_closed)
-        throw TopologyError(file, "the mesh is closed (no border): ctmap morph maps discs; closed meshes need "
-                                  "charts and seams (not yet supported): cut it open first");
-    require_disc(topo, file);
+        throw TopologyError(file, "the mesh is closed (no border): ctmap morph maps discs; a morph with charts and "
+                                  "seams is not available yet: cut it open first");
+    require_disc(topo, file, NotDiscAdvice::cut_open);
 }
 
 /// One side's pair ends as features on `mesh` (point ends inserted as vertices).
