@@ -1,8 +1,12 @@
 // Issue 13: several charts on one mesh (paper §3). Every map is certified again here, per chart.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <thread>
 
 #include "chart_cases.h"
 #include "ctmap/domain/starter_charts.h"
+#include "ctmap/errors.h"
 #include "ctmap/io/mesh_topology.h"
 #include "ctmap/border_loop.h"
 #include "ctmap/io/read_mesh.h"
@@ -66,6 +70,48 @@ TEST(Charts, TwoChartsOnTheClosedCow) {
     std::printf("cow: %d faces in chart 0, %d in chart 1, %zu seam pieces, symmetric Dirichlet %.3f\n",
                 int(r.charts[0].faces.size()), int(r.charts[1].faces.size()), r.seams.size(),
                 r.certificate.distortion.symmetric_dirichlet / 4);
+}
+
+/// The charts run in parallel (issue 13): on one thread and on all of them the map is the same
+/// bit for bit, and a failing chart is reported the same way (the first failing chart in order).
+TEST(Charts, ParallelChartsGiveTheMapOfOneThread) {
+    const TriMesh mesh = read_mesh(data("meshes/cow.off"));
+    std::mt19937 rng(11);
+    const TwoChartCase cc = two_chart_case(mesh, 8, 6, 1.0, rng);
+    auto run = [&](int threads) {
+        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+        return map_charts(mesh, cc.charts);
+    };
+    const ChartsResult one = run(1), all = run(std::max(2, int(std::thread::hardware_concurrency())));
+    expect_valid_charts_map(mesh, cc.charts, all);
+    EXPECT_EQ(one.textured.mesh.faces, all.textured.mesh.faces);
+    EXPECT_EQ(one.textured.uv_faces, all.textured.uv_faces);
+    ASSERT_EQ(one.textured.uvs.size(), all.textured.uvs.size());
+    for (std::size_t i = 0; i < one.textured.uvs.size(); ++i)
+        ASSERT_EQ(one.textured.uvs[i], all.textured.uvs[i]) << "uv " << i << " differs between 1 and all threads";
+    // Both charts broken inside their own pipeline (two interior features on one image point in
+    // each): whichever thread fails first, the first chart is the one named.
+    std::vector<ChartInput> bad = cc.charts;
+    for (ChartInput& c : bad) {
+        std::vector<MapFeature*> interior;
+        for (MapFeature& f : c.features)
+            if (std::find(c.border.begin(), c.border.end(), f.name) == c.border.end()) interior.push_back(&f);
+        ASSERT_GE(interior.size(), 2u);
+        interior[1]->uv = interior[0]->uv;
+    }
+    auto message = [&](int threads) {
+        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+        try {
+            map_charts(mesh, bad);
+        } catch (const BadInput& e) {
+            return std::string(e.problem());
+        }
+        return std::string("no BadInput");
+    };
+    const std::string m1 = message(1), m2 = message(std::max(2, int(std::thread::hardware_concurrency())));
+    EXPECT_NE(m1.find("chart '" + bad[0].name + "'"), std::string::npos) << m1;
+    std::printf("both charts broken, one thread and all: %s\n", m1.c_str());
+    EXPECT_EQ(m1, m2);
 }
 
 }  // namespace

@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <chrono>
+#include <exception>
 #include <map>
+#include <mutex>
 #include <set>
+
+#include <tbb/parallel_for.h>
 
 #include "ctmap/border_loop.h"
 #include "ctmap/cut/cut_to_disc.h"
@@ -213,22 +217,49 @@ ChartsResult map_charts(const TriMesh& input, const std::vector<ChartInput>& cha
     const ChartRegions regions = chart_regions(mesh, outlines);
     out.timings_ms.paths += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 
-    // Each chart through the single-chart pipeline, on its region.
+    // Each chart through the single-chart pipeline, on its region. The charts run in parallel
+    // (each chart's stages are parallel inside too) and are put together below in chart order;
+    // the first chart in that order that fails is the one reported, so the output and the
+    // messages do not depend on the threads.
+    const std::size_t nc = charts.size();
+    std::vector<std::vector<MapFeature>> chart_features(nc);
+    std::vector<MapResult> results(nc);
+    std::vector<std::exception_ptr> failure(nc);
+    MapOptions inner = options;
+    inner.progress = nullptr;  // one line for the charts: their stages would interleave
+    std::mutex progress_mutex;
+    int charts_done = 0;
+    if (options.progress) options.progress("charts", 0, int(nc));
+    tbb::parallel_for(std::size_t(0), nc, [&](std::size_t c) {
+        try {
+            const ChartRegion& region = regions.charts[c];
+            std::vector<int> local(mesh.num_vertices(), -1);
+            for (std::size_t v = 0; v < region.global.size(); ++v) local[region.global[v]] = int(v);
+            for (const MapFeature& f : charts[c].features) {
+                MapFeature g = f;
+                g.vertex = local[vertex_of[index_of.at(f.name)]];
+                chart_features[c].push_back(g);
+            }
+            results[c] = naming_chart(charts[c].name, [&] { return map_texture(region.mesh, chart_features[c], inner); });
+        } catch (...) {
+            failure[c] = std::current_exception();
+        }
+        if (options.progress) {
+            const std::lock_guard<std::mutex> lock(progress_mutex);
+            options.progress("charts", ++charts_done, int(nc));
+        }
+    });
+    for (const std::exception_ptr& e : failure)
+        if (e) std::rethrow_exception(e);
+
     out.textured.mesh.positions = mesh.positions;
     int patch_offset = 0;
-    for (std::size_t c = 0; c < charts.size(); ++c) {
+    for (std::size_t c = 0; c < nc; ++c) {
         const ChartRegion& region = regions.charts[c];
-        std::vector<int> local(mesh.num_vertices(), -1);
-        for (std::size_t v = 0; v < region.global.size(); ++v) local[region.global[v]] = int(v);
-        std::vector<MapFeature> features;
-        for (const MapFeature& f : charts[c].features) {
-            MapFeature g = f;
-            g.vertex = local[vertex_of[index_of.at(f.name)]];
-            features.push_back(g);
-        }
+        const std::vector<MapFeature>& features = chart_features[c];
         ChartMap cm;
         cm.name = charts[c].name;
-        cm.result = naming_chart(charts[c].name, [&] { return map_texture(region.mesh, features, options); });
+        cm.result = std::move(results[c]);
         const MapResult& r = cm.result;
         // The region's vertices are the mesh's; what the chart's cut inserted is new, and must not
         // lie on the seam (the other chart would not have it).

@@ -72,6 +72,10 @@ struct ChartsResult {
 /// automatically as one more chart, `charts.size()`: each connected piece cut into a disc through
 /// its handles and between its border loops, mapped one-to-one onto a circle (Tutte), optimised,
 /// and placed in a tile of its own of the unit square.
+/// The charts are mapped in parallel (TBB) and put together in chart order, so the result does
+/// not depend on the threads; `options.progress` then reports one stage, "charts" (done of
+/// total), from one thread at a time, and any other callback in `options` may be called from
+/// several threads at once.
 /// \pre `mesh` is a consistently oriented manifold (closed, with borders, of any genus).
 /// \throw BadInput naming the charts and features (chart_regions' rules, map_texture's per
 ///        chart, a feature given at different places in two charts);
