@@ -2,6 +2,9 @@
 // the fixed border's vertices on their sides, and the free border's guard on a surface whose
 // isometric flattening overlaps itself.
 #include <gtest/gtest.h>
+#include <thread>
+#include <chrono>
+#include <atomic>
 
 #include <dlfcn.h>
 
@@ -196,6 +199,36 @@ TEST(Isometric, CholmodsOpenMpIsSerialWhileItRunsAndRestoredAfter) {
     std::vector<Vec2> uv5 = r.uv;
     optimise_isometric(r.cut.mesh, uv5, r.cut.feature_vertex, watched);
     EXPECT_EQ(during, 0);
+    EXPECT_EQ(get_levels(), levels);
+
+    // Two optimisers at once (map_charts runs its charts in parallel): the second is still
+    // serial after the first has finished, and the caller's setting comes back when both have.
+    // (libgomp keeps this setting per thread, as OpenMP 5 has it: each optimiser saves and puts
+    // back its own thread's; one saved copy for the process would leave a thread at 0.)
+    ASSERT_NE(levels, 0) << "the check below needs a caller's setting other than 0";
+    using Clock = std::chrono::steady_clock;
+    const auto deadline = Clock::now() + std::chrono::seconds(120);
+    std::atomic<bool> second_inside{false}, first_done{false};
+    int during_second = -1;
+    IsometricOptions second = watched;
+    second.on_iteration = [&](int, const std::vector<Vec2>&, double) {
+        second_inside = true;
+        while (!first_done && Clock::now() < deadline) std::this_thread::yield();
+        during_second = get_levels();
+    };
+    std::thread other([&] {
+        std::vector<Vec2> uv = r.uv;
+        optimise_isometric(r.cut.mesh, uv, r.cut.feature_vertex, second);
+    });
+    while (!second_inside && Clock::now() < deadline) std::this_thread::yield();
+    IsometricOptions first = watched;
+    first.on_iteration = nullptr;
+    std::vector<Vec2> uv6 = r.uv;
+    optimise_isometric(r.cut.mesh, uv6, r.cut.feature_vertex, first);
+    first_done = true;
+    other.join();
+    ASSERT_TRUE(second_inside.load()) << "the second optimiser made no iteration";
+    EXPECT_EQ(during_second, 0);
     EXPECT_EQ(get_levels(), levels);
 }
 
