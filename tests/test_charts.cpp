@@ -3,6 +3,8 @@
 #include <dlfcn.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <thread>
 
 #include "chart_cases.h"

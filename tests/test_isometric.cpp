@@ -205,7 +205,7 @@ TEST(Isometric, CholmodsOpenMpIsSerialWhileItRunsAndRestoredAfter) {
     // serial after the first has finished, and the caller's setting comes back when both have.
     // (libgomp keeps this setting per thread, as OpenMP 5 has it: each optimiser saves and puts
     // back its own thread's; one saved copy for the process would leave a thread at 0.)
-    ASSERT_NE(levels, 0) << "the check below needs a caller's setting other than 0";
+    if (levels == 0) GTEST_SKIP() << "OMP_MAX_ACTIVE_LEVELS is 0 here: the check below needs another setting";
     using Clock = std::chrono::steady_clock;
     const auto deadline = Clock::now() + std::chrono::seconds(120);
     std::atomic<bool> second_inside{false}, first_done{false};

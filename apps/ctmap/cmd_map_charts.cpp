@@ -198,7 +198,7 @@ void print_charts_summary(const MapArgs&, const ChartsRun& run, std::ostream& os
        << " degenerate, feature error " << c.feature_max_error << " over " << r.occurrences.size()
        << " feature occurrences, every chart's border " << (c.border_simple ? "simple" : "crossing") << ")\n";
     const MapTimings& t = r.timings_ms;
-    os << "  ms: read " << fixed(t.read, 1) << ", seams and paths " << fixed(t.paths, 1) << ", embed " << fixed(t.embed, 1)
+    os << "  ms (each stage summed over the charts, which run in parallel): read " << fixed(t.read, 1) << ", seams and paths " << fixed(t.paths, 1) << ", embed " << fixed(t.embed, 1)
        << ", refine " << fixed(t.refine, 1) << ", optimise " << fixed(t.optimise, 1) << ", certify " << fixed(t.certify, 1)
        << ", total " << fixed(t.total, 1) << "\n  wrote";
     for (const std::string& f : run.written) os << " " << f;
@@ -234,7 +234,7 @@ int validate_charts(const std::string& mesh_path, const std::string& features_pa
         std::cout << "  the rest: " << r.rest.faces << " faces in no chart, mapped automatically (" << r.rest.pieces
                   << " piece(s))\n";
     std::cout << "  " << r.seams.size() << " seam pieces\n";
-    return 0;
+    return kExitOk;
 }
 
 }  // namespace ctmap::cli

@@ -95,8 +95,9 @@ struct ChartsInputs {
 ChartsInputs read_charts_inputs(const std::string& mesh_path, const std::string& features_path, double snap,
                                 const std::vector<NamedPath>& outputs = {});
 
-/// `ctmap validate` for a features file with charts: every check `ctmap map` makes (the seams,
-/// each chart's region and layout, run as map does it), nothing written. Exit 0, or throws as map.
+/// `ctmap validate` for a features file with charts: the checks `ctmap map` makes on the inputs
+/// (the seams, each chart's region and layout, the cut), run as map runs them, up to the certified
+/// bare embedding (no relaxation or optimiser), nothing written. Exit 0, or throws as map.
 int validate_charts(const std::string& mesh_path, const std::string& features_path, const std::string& image_arg,
                     double snap, const std::string& border);
 

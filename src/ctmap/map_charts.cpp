@@ -1,6 +1,7 @@
 #include "ctmap/map_charts.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <chrono>
 #include <exception>
@@ -229,8 +230,10 @@ ChartsResult map_charts(const TriMesh& input, const std::vector<ChartInput>& cha
     inner.progress = nullptr;  // one line for the charts: their stages would interleave
     std::mutex progress_mutex;
     int charts_done = 0;
+    std::atomic<std::size_t> first_failed{nc};  // a chart after it need not run: its error is reported
     if (options.progress) options.progress("charts", 0, int(nc));
     tbb::parallel_for(std::size_t(0), nc, [&](std::size_t c) {
+        if (first_failed.load() < c) return;
         try {
             const ChartRegion& region = regions.charts[c];
             std::vector<int> local(mesh.num_vertices(), -1);
@@ -241,20 +244,22 @@ ChartsResult map_charts(const TriMesh& input, const std::vector<ChartInput>& cha
                 chart_features[c].push_back(g);
             }
             results[c] = naming_chart(charts[c].name, [&] { return map_texture(region.mesh, chart_features[c], inner); });
+            if (options.progress) {
+                const std::lock_guard<std::mutex> lock(progress_mutex);
+                options.progress("charts", ++charts_done, int(nc));
+            }
         } catch (...) {
             failure[c] = std::current_exception();
-        }
-        if (options.progress) {
-            const std::lock_guard<std::mutex> lock(progress_mutex);
-            options.progress("charts", ++charts_done, int(nc));
+            for (std::size_t f = first_failed.load(); c < f && !first_failed.compare_exchange_weak(f, c);) {
+            }
         }
     });
-    for (const std::exception_ptr& e : failure)
-        if (e) std::rethrow_exception(e);
 
     out.textured.mesh.positions = mesh.positions;
     int patch_offset = 0;
     for (std::size_t c = 0; c < nc; ++c) {
+        // A chart's own failure before any check of its result below: the first in chart order.
+        if (failure[c]) std::rethrow_exception(failure[c]);
         const ChartRegion& region = regions.charts[c];
         const std::vector<MapFeature>& features = chart_features[c];
         ChartMap cm;
