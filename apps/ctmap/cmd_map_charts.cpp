@@ -56,7 +56,8 @@ ChartsInputs read_charts_inputs(const std::string& mesh_path, const std::string&
                                 const std::vector<NamedPath>& outputs) {
     ChartsInputs in;
     in.mesh = read_mesh(mesh_path);
-    require_manifold(compute_topology(in.mesh), mesh_path);
+    in.topology = compute_topology(in.mesh);
+    require_manifold(in.topology, mesh_path);
     ChartFile file = read_chart_features(features_path);
     in.images = resolve_chart_images(file, in.sizes);
     std::vector<NamedPath> inputs{{mesh_path, "the mesh"}, {features_path, "the features file"}};
@@ -198,7 +199,8 @@ void print_charts_summary(const MapArgs&, const ChartsRun& run, std::ostream& os
        << " degenerate, feature error " << c.feature_max_error << " over " << r.occurrences.size()
        << " feature occurrences, every chart's border " << (c.border_simple ? "simple" : "crossing") << ")\n";
     const MapTimings& t = r.timings_ms;
-    os << "  ms (each stage summed over the charts, which run in parallel): read " << fixed(t.read, 1) << ", seams and paths " << fixed(t.paths, 1) << ", embed " << fixed(t.embed, 1)
+    os << "  ms (each stage summed over the charts, which run in parallel): read " << fixed(t.read, 1)
+       << ", seams and paths " << fixed(t.paths, 1) << ", embed " << fixed(t.embed, 1)
        << ", refine " << fixed(t.refine, 1) << ", optimise " << fixed(t.optimise, 1) << ", certify " << fixed(t.certify, 1)
        << ", total " << fixed(t.total, 1) << "\n  wrote";
     for (const std::string& f : run.written) os << " " << f;
@@ -210,7 +212,7 @@ int validate_charts(const std::string& mesh_path, const std::string& features_pa
     if (!image_arg.empty())
         throw BadInput(features_path, "--image cannot be used with charts: each chart names its own \"image\"");
     const ChartsInputs in = read_charts_inputs(mesh_path, features_path, snap);
-    const MeshTopology t = compute_topology(in.mesh);
+    const MeshTopology& t = in.topology;
     MapOptions options;
     options.snap = snap;
     options.auto_border = border == "auto";

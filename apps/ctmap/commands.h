@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "ctmap/io/mesh_topology.h"
 #include "ctmap/io/output_paths.h"
 #include "ctmap/map_charts.h"
 #include "ctmap/map_texture.h"
@@ -84,6 +85,7 @@ struct ChartsRun {
 /// A charts map's inputs, read and checked as `ctmap map` and `ctmap validate` both need them.
 struct ChartsInputs {
     TriMesh mesh;
+    MeshTopology topology;                  ///< of `mesh`, computed once
     std::vector<ChartInput> charts;         ///< per chart, its features with UVs and its border
     std::vector<std::string> images;        ///< per chart, its image (empty when only image_size was given)
     std::vector<std::array<int, 2>> sizes;  ///< per chart, its image's width and height
