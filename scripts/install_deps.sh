@@ -7,7 +7,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libcgal-demo  # CGAL's meshes: the closed and higher-genus ones of the charts tests (scripts/fetch_data.sh)
   # libopenblas0-pthread: an optimised BLAS for CHOLMOD's supernodal factorisation (refine/isometric)
-  libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev libstb-dev libtinygltf-dev libexif-dev libcpp-httplib-dev libsuitesparse-dev libopenblas0-pthread
+  libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev libstb-dev libjpeg62-turbo-dev libtinygltf-dev libexif-dev libcpp-httplib-dev libsuitesparse-dev libopenblas0-pthread
   libgtest-dev libbenchmark-dev gnuplot-nox
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   clang-14 libclang-rt-14-dev llvm-14  # scripts/fuzz.sh: clang, libFuzzer's runtime, llvm-symbolizer

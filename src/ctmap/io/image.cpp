@@ -11,11 +11,14 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "ctmap/errors.h"
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/io/image_bytes.h"
 #include "ctmap/io/input_file.h"
+#include "ctmap/io/jpeg_decode.h"
 
 namespace ctmap {
 namespace {
@@ -30,10 +33,10 @@ std::string reason() {
 }
 
 /// The bytes of an image file or buffer checked for what stb_image trusts (image_bytes.h), its
-/// header read, and sizes no real texture has refused before any pixel is allocated.
+/// header read (a JPEG's by libjpeg-turbo: io/jpeg_decode), and sizes no real texture has refused before any pixel is allocated.
 struct CheckedImage {
     std::string format;  ///< "PNG" or "JPEG"
-    std::string bytes;   ///< what stb_image may decode
+    std::string bytes;   ///< what the decoder may be given
     int width = 0, height = 0;  ///< as stored (before EXIF orientation)
 };
 
@@ -45,7 +48,8 @@ CheckedImage check_image_bytes(const std::string& bytes, const std::string& name
     if (c.bytes.size() > std::size_t(std::numeric_limits<int>::max()))
         throw BadInput(name, "the image file is too large (over 2 GB)");
     int n = 0;
-    if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(c.bytes.data()), int(c.bytes.size()), &c.width,
+    if (c.format == "JPEG") read_jpeg_size(c.bytes, name, c.width, c.height);
+    else if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(c.bytes.data()), int(c.bytes.size()), &c.width,
                                &c.height, &n))
         throw BadInput(name, "the " + c.format + " header is truncated or corrupt" + reason());
     if (c.width <= 0 || c.height <= 0) throw BadInput(name, "the image has no pixels");
@@ -105,17 +109,24 @@ int exif_orientation(const std::string& bytes) {
 Image decode_image(const std::string& bytes, const std::string& name) {
     const CheckedImage c = check_image_bytes(bytes, name);
     int w = 0, h = 0, n = 0;
+    std::vector<std::uint8_t> jpeg;
+    if (c.format == "JPEG") jpeg = decode_jpeg_rgba(c.bytes, name, w, h);
     std::unique_ptr<stbi_uc, void (*)(void*)> data(
-        stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(c.bytes.data()), int(c.bytes.size()), &w, &h, &n, 4),
+        c.format == "JPEG" ? nullptr
+                           : stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(c.bytes.data()),
+                                                   int(c.bytes.size()), &w, &h, &n, 4),
         stbi_image_free);
-    if (!data) throw BadInput(name, "the " + c.format + " image data is truncated or corrupt" + reason());
+    if (c.format != "JPEG" && !data)
+        throw BadInput(name, "the " + c.format + " image data is truncated or corrupt" + reason());
+    const std::uint8_t* src = c.format == "JPEG" ? jpeg.data() : data.get();
     Image img;
     img.exif_orientation = c.format == "JPEG" ? exif_orientation(bytes) : 1;
     img.width = swaps_axes(img.exif_orientation) ? h : w;
     img.height = swaps_axes(img.exif_orientation) ? w : h;
     img.channels = 4;
-    if (img.exif_orientation == 1) img.pixels.assign(data.get(), data.get() + std::size_t(w) * h * 4);
-    else img.pixels = orient(data.get(), w, h, img.exif_orientation);
+    if (img.exif_orientation == 1 && c.format == "JPEG") img.pixels = std::move(jpeg);
+    else if (img.exif_orientation == 1) img.pixels.assign(src, src + std::size_t(w) * h * 4);
+    else img.pixels = orient(src, w, h, img.exif_orientation);
     img.path = name;
     return img;
 }

@@ -1,6 +1,6 @@
 #pragma once
 /// \file image.h
-/// Texture images (paper step 1): PNG and JPEG through stb_image.
+/// Texture images (paper step 1): PNG through stb_image, JPEG through libjpeg-turbo (io/jpeg_decode).
 #include <cstdint>
 #include <string>
 #include <vector>
