@@ -389,6 +389,30 @@ TexturedMesh read_glb(const std::string& path, GlbTexture* texture) {
     gltf.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
                            void*) { return true; },
                         nullptr);
+    // External buffers and images (a .gltf's `uri`) are read as ctmap reads every input: regular
+    // files only, each checked (tinygltf's own reader took a folder's size as 2^63 and asked for
+    // that much memory: a fuzz finding), and nothing is written.
+    tinygltf::FsCallbacks fs{};
+    fs.FileExists = [](const std::string& p, void*) {
+        std::error_code ec;
+        return std::filesystem::is_regular_file(p, ec);
+    };
+    fs.ExpandFilePath = [](const std::string& p, void*) { return p; };
+    fs.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& p, void*) {
+        try {
+            const std::string bytes = read_input_file(p, "glTF buffer file");
+            out->assign(bytes.begin(), bytes.end());
+            return true;
+        } catch (const BadInput& e) {
+            if (err) *err += e.what();
+            return false;
+        }
+    };
+    fs.WriteWholeFile = [](std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+        if (err) *err += "the glTF reader writes no file";
+        return false;
+    };
+    gltf.SetFsCallbacks(fs);
     const bool ok = has_glb_extension(path) ? gltf.LoadBinaryFromFile(&m, &err, &warn, path)
                                             : gltf.LoadASCIIFromFile(&m, &err, &warn, path);
     if (!ok) throw BadInput(path, "not a readable glTF file: " + err);
