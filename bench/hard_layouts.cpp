@@ -24,31 +24,6 @@ namespace {
 using namespace ctmap;
 using Clock = std::chrono::steady_clock;
 
-/// N point features inside random faces, imaged by the barycentric mix of `tutte` (one-to-one
-/// on each face, so on the disc), plus `border` border vertex features (all of them: the border
-/// polygon is then Tutte's, and holds every interior point).
-std::vector<MapFeature> point_features(const TriMesh& mesh, const std::vector<Vec2>& tutte, int n, int border,
-                                       std::mt19937& rng) {
-    test::RandomFeatures rf = test::random_features(mesh, tutte, border, border, 0.0, rng);
-    std::vector<MapFeature> out = test::map_features_of(rf);
-    std::uniform_int_distribution<int> face(0, mesh.num_faces() - 1);
-    std::uniform_real_distribution<double> u(0, 1);
-    for (int i = 0; int(out.size()) < border + n; ++i) {
-        const Tri& t = mesh.faces[face(rng)];
-        // Uniform in the triangle, kept 2% of the way clear of its sides.
-        const double r1 = std::sqrt(u(rng)), r2 = u(rng);
-        const double a = 1 - r1, b = r1 * (1 - r2), c = r1 * r2;
-        if (std::min({a, b, c}) < 0.02) continue;
-        MapFeature f;
-        f.name = "p" + std::to_string(i);
-        f.point = a * mesh.positions[t[0]] + b * mesh.positions[t[1]] + c * mesh.positions[t[2]];
-        const Vec2 q = a * tutte[t[0]] + b * tutte[t[1]] + c * tutte[t[2]];
-        f.uv = Vec2(0.5 + 0.45 * q.x(), 0.5 + 0.45 * q.y());
-        out.push_back(f);
-    }
-    return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,12 +42,18 @@ int main(int argc, char** argv) {
     std::mt19937 rng(seed);
     std::vector<MapFeature> features;
     if (kind == "twist") features = test::map_features_of(test::random_features(mesh, tutte, n, 12, twist, rng));
-    else features = point_features(mesh, tutte, n, int(WorkMesh(mesh).border_loop().size()), rng);
+    else features = test::point_features(mesh, tutte, n, int(WorkMesh(mesh).border_loop().size()), rng);
     nlohmann::ordered_json row{{"kind", kind}, {"mesh", mesh_file}, {"features", features.size()},
                                {"twist", twist}, {"seed", seed}, {"faces_in", mesh.num_faces()}};
     const auto t0 = Clock::now();
     try {
         MapOptions options;
+        // Progress on stderr (a line per 500 paths): a long run shows where it is.
+        options.progress = [t0](const std::string& stage, int done, int total) {
+            if (done % 500 == 0 || done == total)
+                std::cerr << stage << " " << done << "/" << total << " at "
+                          << std::chrono::duration<double>(Clock::now() - t0).count() << " s" << std::endl;
+        };
         const MapResult r = map_texture(mesh, features, options);
         row["faces_out"] = r.cut.mesh.num_faces();
         row["growth"] = double(r.cut.mesh.num_faces()) / mesh.num_faces();

@@ -3,6 +3,8 @@
 // vertices under a known one-to-one map of the disc — Tutte's embedding onto the unit circle,
 // then a twist whose angle grows towards the centre — so a valid constrained map always exists.
 #include <algorithm>
+#include <cmath>
+#include <string>
 #include <random>
 
 #include "ctmap/cut/work_mesh.h"
@@ -90,6 +92,31 @@ inline std::vector<MapFeature> map_features_of(const RandomFeatures& rf) {
         out[i].name = "f" + std::to_string(i);
         out[i].vertex = rf.vertex[i];
         out[i].uv = rf.uv[i];
+    }
+    return out;
+}
+
+/// `n` 3D point features inside random faces, imaged by the barycentric mix of `tutte` (one-to-one
+/// on each face, so on the disc), after `border` border vertex features (all of them: the border
+/// polygon is then Tutte's and holds every interior point). Issue 17's dense layouts
+/// (bench/hard_layouts points, tests/test_cut_dense.cpp).
+inline std::vector<MapFeature> point_features(const TriMesh& mesh, const std::vector<Vec2>& tutte, int n, int border,
+                                              std::mt19937& rng) {
+    std::vector<MapFeature> out = map_features_of(random_features(mesh, tutte, border, border, 0.0, rng));
+    std::uniform_int_distribution<int> face(0, mesh.num_faces() - 1);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int i = 0; int(out.size()) < border + n; ++i) {
+        const Tri& t = mesh.faces[face(rng)];
+        // Uniform in the triangle, kept 2% of the way clear of its sides.
+        const double r1 = std::sqrt(u(rng)), r2 = u(rng);
+        const double a = 1 - r1, b = r1 * (1 - r2), c = r1 * r2;
+        if (std::min({a, b, c}) < 0.02) continue;
+        MapFeature f;
+        f.name = "p" + std::to_string(i);
+        f.point = a * mesh.positions[t[0]] + b * mesh.positions[t[1]] + c * mesh.positions[t[2]];
+        const Vec2 q = a * tutte[t[0]] + b * tutte[t[1]] + c * tutte[t[2]];
+        f.uv = Vec2(0.5 + 0.45 * q.x(), 0.5 + 0.45 * q.y());
+        out.push_back(f);
     }
     return out;
 }

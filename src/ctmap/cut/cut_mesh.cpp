@@ -197,7 +197,12 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
                 ++stats.exact_rejected;
             }
             PathSearchOptions s = search;
-            s.spacing = search.spacing / double(1 << std::min(attempt, 4));
+            // Closer features get finer points (dense layouts), but at most 64 times finer: two
+            // features a hair apart would otherwise put a million points on every edge met.
+            s.spacing = search.spacing;
+            if (opt.reach_spacing_factor > 0)
+                s.spacing = std::max(search.spacing / 64, std::min(search.spacing, opt.reach_spacing_factor * dist3(u, w)));
+            s.spacing /= double(1 << std::min(attempt, 4));
             found = find_path(net.mesh, c, s);
             if (found) {
                 if (found->search == FoundPath::Search::corridor) ++stats.corridor_paths;

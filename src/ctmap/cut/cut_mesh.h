@@ -48,6 +48,11 @@ struct CutOptions {
     /// Steiner point spacing relative to the mean edge length of the input (paper §2.3: "given a
     /// constant length, each edge is inserted with several intermediate points").
     double spacing_factor = 0.34;
+    /// A path's spacing is also at most this fraction of the 3D distance between its ends, down
+    /// to 1/64 of the mesh's spacing (0: the mesh's spacing only). Features much closer together than the mesh's edges (dense
+    /// point sets) otherwise get paths made of the few points the coarse spacing leaves, which
+    /// hug each other and close sectors.
+    double reach_spacing_factor = 0.25;
     /// Paths from CGAL's exact geodesics (`find_exact_path`) instead of the Steiner-graph search,
     /// for comparison; a geodesic that breaks the path rules (it may cross a path, pass through a
     /// blocked vertex or leave outside its sector) is replaced by the approximate search.
