@@ -340,6 +340,15 @@ void check_off_counts(const std::string& path) {
     const bool binary = !lines.empty() && lines[0].tokens.size() > 1 && lines[0].tokens[1] == "BINARY";
     if (binary) {
         if (!binary_off_counts(head, nv, nf)) return;
+        // The edge count, which CGAL doubles in an int (signed overflow past 2^30; ctmap ignores it).
+        if (const std::size_t eol = head.find('\n'); eol != std::string::npos && head.size() >= eol + 13) {
+            const auto* b = reinterpret_cast<const unsigned char*>(head.data() + eol + 9);
+            const std::int32_t ne = std::int32_t((std::uint32_t(b[0]) << 24) | (std::uint32_t(b[1]) << 16) |
+                                                 (std::uint32_t(b[2]) << 8) | b[3]);
+            if (ne < 0 || ne > (1 << 30))
+                throw BadInput(path, "the OFF header declares " + std::to_string(ne) +
+                                         " edges (negative or over 2^30: a corrupt header)");
+        }
         vertex_bytes = 12;  // three 32-bit floats
         face_bytes = 16;    // a count and three indices
     } else if (!off_counts(lines, body, nv, nf)) {

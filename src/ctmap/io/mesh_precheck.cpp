@@ -248,6 +248,11 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
                 refuse(path, "not a valid off file: line " + std::to_string(line_no) +
                                  ": the header's counts must be three non-negative integers, found '" +
                                  std::string(tok) + "'");
+            // CGAL doubles the edge count (ctmap ignores it) in an int: over 2^30 is signed overflow
+            // (UBSan, a fuzz finding); no mesh a file can hold has that many edges.
+            if (n == 3 && v > (1LL << 30))
+                refuse(path, "not a valid off file: line " + std::to_string(line_no) + ": the header declares " +
+                                 std::string(tok) + " edges, more than any mesh ctmap reads (at most 2^30)");
         } while (t.next(tok));
         // Three: with two, CGAL takes the first number of the next line as the edge count.
         if (n < 3)
