@@ -33,7 +33,8 @@ std::string reason() {
 }
 
 /// The bytes of an image file or buffer checked for what stb_image trusts (image_bytes.h), its
-/// header read (a JPEG's by libjpeg-turbo: io/jpeg_decode), and sizes no real texture has refused before any pixel is allocated.
+/// header read (a JPEG's by libjpeg-turbo: io/jpeg_decode), and sizes no real texture has
+/// refused before any pixel is allocated.
 struct CheckedImage {
     std::string format;  ///< "PNG" or "JPEG"
     std::string bytes;   ///< what the decoder may be given
@@ -109,24 +110,23 @@ int exif_orientation(const std::string& bytes) {
 Image decode_image(const std::string& bytes, const std::string& name) {
     const CheckedImage c = check_image_bytes(bytes, name);
     int w = 0, h = 0, n = 0;
-    std::vector<std::uint8_t> jpeg;
-    if (c.format == "JPEG") jpeg = decode_jpeg_rgba(c.bytes, name, w, h);
-    std::unique_ptr<stbi_uc, void (*)(void*)> data(
-        c.format == "JPEG" ? nullptr
-                           : stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(c.bytes.data()),
-                                                   int(c.bytes.size()), &w, &h, &n, 4),
-        stbi_image_free);
-    if (c.format != "JPEG" && !data)
-        throw BadInput(name, "the " + c.format + " image data is truncated or corrupt" + reason());
-    const std::uint8_t* src = c.format == "JPEG" ? jpeg.data() : data.get();
+    // The stored pixels (RGBA, before EXIF orientation), from the decoder of the format.
+    std::vector<std::uint8_t> stored;
+    if (c.format == "JPEG") {
+        stored = decode_jpeg_rgba(c.bytes, name, w, h);
+    } else {
+        std::unique_ptr<stbi_uc, void (*)(void*)> data(
+            stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(c.bytes.data()), int(c.bytes.size()), &w, &h, &n, 4),
+            stbi_image_free);
+        if (!data) throw BadInput(name, "the " + c.format + " image data is truncated or corrupt" + reason());
+        stored.assign(data.get(), data.get() + std::size_t(w) * h * 4);
+    }
     Image img;
     img.exif_orientation = c.format == "JPEG" ? exif_orientation(bytes) : 1;
     img.width = swaps_axes(img.exif_orientation) ? h : w;
     img.height = swaps_axes(img.exif_orientation) ? w : h;
     img.channels = 4;
-    if (img.exif_orientation == 1 && c.format == "JPEG") img.pixels = std::move(jpeg);
-    else if (img.exif_orientation == 1) img.pixels.assign(src, src + std::size_t(w) * h * 4);
-    else img.pixels = orient(src, w, h, img.exif_orientation);
+    img.pixels = img.exif_orientation == 1 ? std::move(stored) : orient(stored.data(), w, h, img.exif_orientation);
     img.path = name;
     return img;
 }
