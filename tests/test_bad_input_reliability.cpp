@@ -163,11 +163,15 @@ TEST(BadInputReliability, DeclaredCountsAreCheckedAgainstTheFileSize) {
                          "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n";
     binary += std::string(36, '\0') + std::string("\xff\xff\xff\x7f", 4) + std::string(12, '\0');
     write_file(d / "binary.ply", binary);
+    std::string off_binary = std::string("OFF BINARY\n") + std::string(3, '\0') + "\x03" + std::string(3, '\0') + "\x01" +
+                             std::string(4, '\0') + std::string(36, '\0') + "\x7f\xff\xff\xff" + std::string(12, '\0');
+    write_file(d / "binary.off", off_binary);
     write_file(d / "property_first.ply", "ply\nformat ascii 1.0\nproperty float x\nelement vertex 3\nend_header\n0\n0\n0\n");
     expect_refused(d, "info " + q(d / "corners.off"), d / "corners.off", {"face 0", "2000000000"});
     expect_refused(d, "info " + q(d / "vertices.ply"), d / "vertices.ply", {"3000000000 vertex elements"});
     expect_refused(d, "info " + q(d / "list.ply"), d / "list.ply", {"face 0 declares a list of 200 values"});
     expect_refused(d, "info " + q(d / "binary.ply"), d / "binary.ply", {"a list of 2147483647 values"});
+    expect_refused(d, "info " + q(d / "binary.off"), d / "binary.off", {"face 0 declares 2147483647 corners"});
     expect_refused(d, "info " + q(d / "property_first.ply"), d / "property_first.ply",
                    {"line 3", "'property' line before any 'element'"});
 }
