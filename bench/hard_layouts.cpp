@@ -4,8 +4,10 @@
 // (points inside faces, their image by the same barycentric mix of the Tutte map). Prints faces
 // in and out, the cut's counts, the time and the certificate; a failure prints its message.
 //
-//   hard_layouts twist MESH N TWIST [--seed S]
-//   hard_layouts points MESH N [--seed S]
+//   hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric]
+//   hard_layouts points MESH N [--seed S] [--refine paper|isometric]
+// (--refine paper stops after the paper's relaxation: the cut and its certificate without the
+// optimiser, whose time on a mesh the cut grew to 10^5-10^6 faces is issue 11's subject.)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -28,15 +30,19 @@ using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
     if (argc < 4) {
-        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] | hard_layouts points MESH N [--seed S]\n";
+        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] | hard_layouts points "
+                     "MESH N [--seed S] [--refine paper|isometric]\n";
         return 2;
     }
     const std::string kind = argv[1], mesh_file = argv[2];
     const int n = std::stoi(argv[3]);
     const double twist = kind == "twist" && argc > 4 ? std::stod(argv[4]) : 0;
     unsigned seed = 1;
-    for (int i = 4; i + 1 < argc; ++i)
+    std::string refine = "isometric";
+    for (int i = 4; i + 1 < argc; ++i) {
         if (std::string(argv[i]) == "--seed") seed = unsigned(std::stoul(argv[i + 1]));
+        if (std::string(argv[i]) == "--refine") refine = argv[i + 1];
+    }
     const TriMesh mesh = read_mesh(mesh_file);
     const std::vector<Vec2> tutte = test::tutte_map(mesh);
     std::mt19937 rng(seed);
@@ -44,10 +50,12 @@ int main(int argc, char** argv) {
     if (kind == "twist") features = test::map_features_of(test::random_features(mesh, tutte, n, 12, twist, rng));
     else features = test::point_features(mesh, tutte, n, int(WorkMesh(mesh).border_loop().size()), rng);
     nlohmann::ordered_json row{{"kind", kind}, {"mesh", mesh_file}, {"features", features.size()},
-                               {"twist", twist}, {"seed", seed}, {"faces_in", mesh.num_faces()}};
+                               {"twist", twist}, {"seed", seed}, {"refine", refine},
+                                   {"faces_in", mesh.num_faces()}};
     const auto t0 = Clock::now();
     try {
         MapOptions options;
+        if (refine == "paper") options.refine_mode = RefineMode::paper;
         // Progress on stderr (a line per 500 paths): a long run shows where it is.
         options.progress = [t0](const std::string& stage, int done, int total) {
             if (done % 500 == 0 || done == total)
@@ -58,8 +66,12 @@ int main(int argc, char** argv) {
         row["faces_out"] = r.cut.mesh.num_faces();
         row["growth"] = double(r.cut.mesh.num_faces()) / mesh.num_faces();
         row["steiner_vertices"] = r.cut_stats.steiner_vertices;
+        row["path_crossings_of_input_edges"] = r.cut_stats.vertices_on_input_edges;
+        row["vertices_inside_input_faces"] = r.cut_stats.vertices_inside_faces;
+        row["straightened_away"] = r.cut_stats.straightened_vertices;
+        row["path_length"] = r.cut_stats.path_length;
         row["valid"] = r.certificate.valid;
-        row["ms"] = {{"triangulate", r.timings_ms.triangulate}, {"paths", r.timings_ms.paths}, {"embed", r.timings_ms.embed}, {"refine", r.timings_ms.refine}};
+        row["ms"] = {{"triangulate", r.timings_ms.triangulate}, {"paths", r.timings_ms.paths}, {"embed", r.timings_ms.embed}, {"refine", r.timings_ms.refine}, {"optimise", r.timings_ms.optimise}};
     } catch (const std::exception& e) {
         row["error"] = e.what();
     }

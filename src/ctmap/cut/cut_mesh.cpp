@@ -9,6 +9,7 @@
 #include "ctmap/cut/approximate_path.h"
 #include "ctmap/cut/exact_geodesic.h"
 #include "ctmap/cut/insert_path.h"
+#include "ctmap/cut/straighten_path.h"
 #include "ctmap/cut/work_mesh.h"
 #include "ctmap/errors.h"
 
@@ -217,7 +218,15 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
             throw InternalError("cut: no valid path between features " + std::to_string(u) + " and " +
                                 std::to_string(w) + " after refinement");
         stats.path_length += found->length;
-        net.add_chain(u, w, insert_path(net.mesh, found->nodes));
+        const int first_new = net.mesh.num_vertices();
+        std::vector<int> chain = insert_path(net.mesh, found->nodes);
+        if (opt.straighten) {
+            StraightenStats st;
+            chain = straighten_path(net.mesh, chain, first_new, net.blocked, net.path_edges, &st);
+            stats.straightened_vertices += st.removed_vertices;
+            stats.kept_runs += st.kept_runs;
+        }
+        net.add_chain(u, w, chain);
         ++stats.paths;
         if (opt.progress) opt.progress(i + 1, total);
     }
@@ -277,16 +286,27 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
     if (std::count(patch_of_comp.begin(), patch_of_comp.end(), -1))
         throw InternalError("cut: a region of the mesh matches no image triangle");
 
+    // Vertices straightening removed have no faces: the output numbers the others in order
+    // (the input's keep their ids: none of them is ever removed).
+    std::vector<int> id(m.positions.size(), -1);
+    for (int v = 0; v < m.num_vertices(); ++v)
+        if (!m.vertex_faces[v].empty()) {
+            id[v] = int(out.mesh.positions.size());
+            out.mesh.positions.push_back(m.positions[v]);
+            if (v >= input.num_vertices()) ++(m.site[v][0] >= 0 ? stats.vertices_on_input_edges : stats.vertices_inside_faces);
+        }
     out.num_input_vertices = input.num_vertices();
-    out.mesh.positions = m.positions;
-    out.mesh.faces = m.faces;
-    out.feature_vertex = feature_vertex;
+    for (const Tri& t : m.faces) out.mesh.faces.push_back({id[t[0]], id[t[1]], id[t[2]]});
+    for (int v : feature_vertex) out.feature_vertex.push_back(id[v]);
+    for (Patch& p : out.patches)
+        for (auto& side : p.sides)
+            for (int& v : side) v = id[v];
     out.face_patch.resize(nf);
     for (int f = 0; f < nf; ++f) out.face_patch[f] = patch_of_comp[comp[f]];
-    out.vertex_face.assign(m.positions.size(), -1);
-    out.vertex_bary.assign(m.positions.size(), Vec3::Zero());
+    out.vertex_face.assign(out.mesh.positions.size(), -1);
+    out.vertex_bary.assign(out.mesh.positions.size(), Vec3::Zero());
     for (int v = 0; v < m.num_vertices(); ++v) {
-        if (m.vertex_faces[v].empty()) continue;
+        if (id[v] < 0) continue;
         const int f = m.origin[m.vertex_faces[v][0]];
         const Tri& t = input.faces[f];
         const Vec3 &A = input.positions[t[0]], &B = input.positions[t[1]], &C = input.positions[t[2]];
@@ -295,10 +315,10 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
         const Vec3& P = m.positions[v];
         const double l1 = (P - A).cross(C - A).dot(n) / n.squaredNorm();
         const double l2 = (B - A).cross(P - A).dot(n) / n.squaredNorm();
-        out.vertex_face[v] = f;
-        out.vertex_bary[v] = Vec3(1 - l1 - l2, l1, l2);
+        out.vertex_face[id[v]] = f;
+        out.vertex_bary[id[v]] = Vec3(1 - l1 - l2, l1, l2);
     }
-    stats.inserted_vertices = m.num_vertices() - input.num_vertices();
+    stats.inserted_vertices = int(out.mesh.positions.size()) - input.num_vertices();
     out.steiner_vertices = stats.steiner_vertices;
     if (stats_out) *stats_out = stats;
     return out;

@@ -64,6 +64,9 @@ struct CutOptions {
     double corridor_min_distance = PathSearchOptions{}.corridor_min_distance;
     /// How many times the fallback may refine around a path's ends before giving up.
     int max_refinements = 8;
+    /// Straighten each inserted path inside every input face it crosses (straighten_path.h):
+    /// bounds the growth of the mesh where paths run side by side.
+    bool straighten = true;
     /// Called with a short message as paths are inserted (for progress lines).
     std::function<void(int done, int total)> progress;
 };
@@ -79,6 +82,12 @@ struct CutStats {
     int exact_rejected = 0;     ///< exact geodesics that broke the rules: approximate search used
     int corridor_paths = 0;     ///< paths found in the corridor of a coarse path
     int corridor_misses = 0;    ///< paths the coarse search or its corridor missed: whole graph searched
+    int straightened_vertices = 0;  ///< path vertices removed by straightening
+    int kept_runs = 0;              ///< runs straightening left as they were
+    /// Where the added vertices lie: inside an input edge (a path crossing it: the growth no cut
+    /// avoids), or inside an input face (Steiner vertices, and path vertices straightening kept).
+    int vertices_on_input_edges = 0;
+    int vertices_inside_faces = 0;
 };
 
 /// The Steiner point spacing the path search of `cut_mesh` uses on `mesh` (world units):

@@ -1,19 +1,13 @@
 #include "ctmap/cut/insert_path.h"
 
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
-
+#include "ctmap/cut/face_frame.h"
 #include "ctmap/errors.h"
 
 namespace ctmap {
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
-using Fb = CGAL::Constrained_triangulation_face_base_2<K>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+using face_frame::CDT;
+using face_frame::K;
 
 /// What to add to one face: points on its edges, points inside, and chords between vertices.
 struct FaceEdit {
@@ -26,17 +20,13 @@ struct FaceEdit {
     std::vector<std::pair<int, int>> chords;
 };
 
-/// The face's affine frame: corners A(0,0), B(1,0), C(1,1). Each side is a line on which the
-/// coordinates of its points are exact (y = 0, x = 1, x = y), so points on a side stay collinear
-/// in floating point and the triangulation makes no slivers along sides.
+/// The point in the face's affine frame (face_frame.h).
 K::Point_2 frame_point(const Tri& t, const FaceEdit::EdgePoint& p) {
     for (int k = 0; k < 3; ++k) {
         const int u = t[k], w = t[(k + 1) % 3];
         if ((p.a == u && p.b == w) || (p.a == w && p.b == u)) {
             const double s = p.a == u ? p.t : 1.0 - p.t;  // parameter from corner k
-            if (k == 0) return {s, 0.0};
-            if (k == 1) return {1.0, s};
-            return {1.0 - s, 1.0 - s};
+            return face_frame::side_point(k, s);
         }
     }
     throw InternalError("insert_path: a point is not on the face it was assigned to");
@@ -85,6 +75,7 @@ std::vector<int> insert_path(WorkMesh& mesh, const std::vector<PathNode>& nodes)
         if (v < 0) {
             v = mesh.num_vertices();
             mesh.positions.push_back(mesh.positions[n.a] + n.t * (mesh.positions[n.b] - mesh.positions[n.a]));
+            mesh.site.push_back(mesh.edge_site(n.a, n.b));
             const int e = mesh.find_edge(n.a, n.b);
             for (int f : mesh.edge_faces.at(e))
                 if (f >= 0) edits[f].edge_points.push_back({v, n.a, n.b, n.t});
@@ -100,6 +91,7 @@ int insert_point(WorkMesh& mesh, int f, const Vec3& l) {
     const Tri t = mesh.faces[f];
     const int v = mesh.num_vertices();
     mesh.positions.push_back(l[0] * mesh.positions[t[0]] + l[1] * mesh.positions[t[1]] + l[2] * mesh.positions[t[2]]);
+    mesh.site.push_back({-1, -1});
     std::map<int, FaceEdit> edits;
     int zero = -1;
     for (int k = 0; k < 3; ++k)
@@ -111,6 +103,7 @@ int insert_point(WorkMesh& mesh, int f, const Vec3& l) {
         const int a = t[(zero + 1) % 3], b = t[(zero + 2) % 3];
         const double s = l[(zero + 2) % 3] / (l[(zero + 1) % 3] + l[(zero + 2) % 3]);
         mesh.positions.back() = mesh.positions[a] + s * (mesh.positions[b] - mesh.positions[a]);
+        mesh.site.back() = mesh.edge_site(a, b);
         for (int g : mesh.edge_faces.at(mesh.find_edge(a, b)))
             if (g >= 0) edits[g].edge_points.push_back({v, a, b, s});
     }

@@ -8,8 +8,10 @@
 
 namespace ctmap {
 
-WorkMesh::WorkMesh(const TriMesh& m) : positions(m.positions), faces(m.faces), origin(m.faces.size()) {
+WorkMesh::WorkMesh(const TriMesh& m)
+    : positions(m.positions), faces(m.faces), origin(m.faces.size()), site(m.positions.size()), input_faces(m.faces) {
     std::iota(origin.begin(), origin.end(), 0);
+    for (int v = 0; v < int(site.size()); ++v) site[v] = {v, v};
     rebuild();
 }
 
@@ -44,7 +46,6 @@ void WorkMesh::rebuild() {
 
 void WorkMesh::replace_faces(const std::vector<int>& removed, const std::vector<Tri>& added,
                              const std::vector<int>& added_origin) {
-    if (removed.size() > added.size()) throw InternalError("replace_faces: fewer faces added than removed");
     std::vector<int> touched_edges;
     for (int f : removed) {
         const Tri& t = faces[f];
@@ -92,6 +93,26 @@ void WorkMesh::replace_faces(const std::vector<int>& removed, const std::vector<
             else throw InternalError("the refined mesh would not be manifold at edge " + std::to_string(a) + "-" + std::to_string(b));
         }
         for (int k = 0; k < 3; ++k) vertex_faces[t[k]].push_back(id);
+    }
+    // Fewer faces than removed (straighten_path removes vertices): the last faces fill the holes,
+    // so face ids stay 0 .. size - 1.
+    std::vector<int> holes(removed.begin() + std::min(removed.size(), added.size()), removed.end());
+    std::sort(holes.rbegin(), holes.rend());
+    for (int h : holes) {
+        const int last = int(faces.size()) - 1;
+        if (h != last) {
+            faces[h] = faces[last];
+            origin[h] = origin[last];
+            face_edges[h] = face_edges[last];
+            for (int k = 0; k < 3; ++k) {
+                std::replace(vertex_faces[faces[h][k]].begin(), vertex_faces[faces[h][k]].end(), last, h);
+                auto& ef = edge_faces[face_edges[h][k]];
+                std::replace(ef.begin(), ef.end(), last, h);
+            }
+        }
+        faces.pop_back();
+        origin.pop_back();
+        face_edges.pop_back();
     }
 }
 

@@ -23,6 +23,10 @@ struct WorkMesh {
     std::vector<Vec3> positions;
     std::vector<Tri> faces;
     std::vector<int> origin;  ///< input face each face lies in
+    /// Where each vertex lies on the input surface: an input vertex v is {v, v}, a vertex inside
+    /// the input edge {a, b} is {a, b} (a < b), a vertex inside an input face {-1, -1}.
+    std::vector<std::array<int, 2>> site;
+    std::vector<Tri> input_faces;  ///< the input's faces (`origin` indexes them)
 
     // Adjacency, valid after rebuild().
     std::vector<std::uint64_t> edges;                    ///< edge keys, index = edge id
@@ -31,6 +35,18 @@ struct WorkMesh {
     std::vector<std::array<int, 3>> face_edges;          ///< per face: edge ids of (t[k], t[k+1]), k = 0..2
 
     explicit WorkMesh(const TriMesh& m);
+    /// The site of a point inside the edge {x, y}: the input edge both lie on, or {-1, -1} when
+    /// the edge runs inside an input face. (Two corners of an input face joined by an edge are
+    /// joined by a side of it: inside a triangle, nothing else joins two corners.)
+    std::array<int, 2> edge_site(int x, int y) const {
+        const auto sx = site[x], sy = site[y];
+        const bool vx = sx[0] >= 0 && sx[0] == sx[1], vy = sy[0] >= 0 && sy[0] == sy[1];
+        if (vx && vy) return {std::min(sx[0], sy[0]), std::max(sx[0], sy[0])};
+        if (vx && sy[0] >= 0) return sy[0] == sx[0] || sy[1] == sx[0] ? sy : std::array<int, 2>{-1, -1};
+        if (vy && sx[0] >= 0) return sx[0] == sy[0] || sx[1] == sy[0] ? sx : std::array<int, 2>{-1, -1};
+        if (sx[0] >= 0 && sx == sy) return sx;
+        return {-1, -1};
+    }
     void rebuild();
     int num_vertices() const { return int(positions.size()); }
     /// The live edge {a, b}, or -1. Looked up through a's faces rather than a hash map of edge
@@ -55,9 +71,10 @@ struct WorkMesh {
     /// Replaces the faces `removed` by `added` (with their input faces `added_origin`) and updates
     /// the adjacency locally, in time proportional to the faces changed: the cut inserts hundreds
     /// of paths, and rebuilding the whole adjacency after each was the cut's main cost on large
-    /// meshes. Added faces take the removed faces' ids first, then new ids at the end.
+    /// meshes. Added faces take the removed faces' ids first, then new ids at the end; with fewer
+    /// faces added than removed, the last faces move into the ids left over.
     /// \pre positions holds every vertex of `added`; the result is a manifold mesh.
-    /// 	hrow InternalError if an edge would get a third face.
+    /// \throw InternalError if an edge would get a third face.
     void replace_faces(const std::vector<int>& removed, const std::vector<Tri>& added, const std::vector<int>& added_origin);
 
     /// Faces around `v` in counter-clockwise order, each with the edge it starts from: for face

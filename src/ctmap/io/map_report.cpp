@@ -37,6 +37,13 @@ nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
                    {"steiner_vertices", r.cut_stats.steiner_vertices},
                    {"flat_edges_split", r.flat_edges.edges_split},
                    {"fallback_fired", r.cut_stats.fallback_fired}};
+    // Why the mesh grew: each vertex the cut added lies where a path crosses an input edge, or
+    // inside an input face (a path's bend that straightening kept, or a Steiner vertex).
+    j["growth"] = {{"faces_added", r.cut.mesh.num_faces() - in.input_faces},
+                   {"path_crossings_of_input_edges", r.cut_stats.vertices_on_input_edges},
+                   {"vertices_inside_input_faces", r.cut_stats.vertices_inside_faces},
+                   {"path_vertices_straightened_away", r.cut_stats.straightened_vertices},
+                   {"path_length", r.cut_stats.path_length}};
     nlohmann::json added = nlohmann::json::array();
     const AutoBorder& ab = r.auto_border;
     for (std::size_t i = 0; i < ab.vertex.size(); ++i) {
