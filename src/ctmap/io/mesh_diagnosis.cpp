@@ -334,15 +334,9 @@ void check_binary_off(const std::string& path, std::string_view bytes, std::stri
     if (ne < 0 || ne > (1 << 30))
         throw BadInput(path, "the OFF header declares " + std::to_string(ne) +
                                  " edges (negative or over 2^30: a corrupt header)");
-    std::string_view prefix = keyword.substr(0, keyword.size() - 3);
-    const bool textures = prefix.substr(0, 2) == "ST";
-    if (textures) prefix.remove_prefix(2);
-    const bool colours = !prefix.empty() && prefix[0] == 'C';
-    if (colours) prefix.remove_prefix(1);
-    const bool normals = !prefix.empty() && prefix[0] == 'N';
-    if (normals) prefix.remove_prefix(1);
-    const long long h = !prefix.empty() && prefix[0] == '4' ? 1 : 0;
-    const long long vertex_bytes = 4 * ((3 + h) + (normals ? 3 + h : 0) + (colours ? 3 : 0) + (textures ? 2 + h : 0));
+    const OffKeyword kw = parse_off_keyword(keyword);
+    const long long h = kw.homogeneous ? 1 : 0;
+    const long long vertex_bytes = 4 * ((3 + h) + (kw.normals ? 3 + h : 0) + (kw.colours ? 3 : 0) + (kw.textures ? 2 + h : 0));
     const long long size = (long long)bytes.size();
     long long at = (long long)eol + 13;
     if ((long double)nv * vertex_bytes + (long double)nf * 16 > (long double)(size - at))

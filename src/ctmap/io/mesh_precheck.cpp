@@ -206,6 +206,21 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
     }
 }
 
+OffKeyword parse_off_keyword(std::string_view keyword) {
+    OffKeyword k;
+    std::string_view prefix = keyword.substr(0, keyword.size() - 3);
+    k.textures = prefix.substr(0, 2) == "ST";
+    if (k.textures) prefix.remove_prefix(2);
+    k.colours = !prefix.empty() && prefix[0] == 'C';
+    if (k.colours) prefix.remove_prefix(1);
+    k.normals = !prefix.empty() && prefix[0] == 'N';
+    if (k.normals) prefix.remove_prefix(1);
+    k.homogeneous = !prefix.empty() && prefix[0] == '4';
+    if (k.homogeneous) prefix.remove_prefix(1);
+    k.known = prefix.empty();
+    return k;
+}
+
 void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
     // CGAL's OFF scanner reads each line's numbers and then trusts them: a negative corner count
     // or index is cast to size_t, a colour beyond 255 to unsigned char, and a colour's entries are
@@ -265,16 +280,8 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
                              ": the header needs three counts (vertices, faces, edges)");
     };
     if (!a.empty()) check_counts_line(head, a);
-    std::string_view prefix = kw.substr(0, kw.size() - 3);
-    const bool textures = prefix.substr(0, 2) == "ST";
-    if (textures) prefix.remove_prefix(2);
-    const bool colours = !prefix.empty() && prefix[0] == 'C';
-    if (colours) prefix.remove_prefix(1);
-    const bool normals = !prefix.empty() && prefix[0] == 'N';
-    if (normals) prefix.remove_prefix(1);
-    const bool homogeneous = !prefix.empty() && prefix[0] == '4';
-    if (homogeneous) prefix.remove_prefix(1);
-    if (!prefix.empty())
+    const auto [textures, colours, normals, homogeneous, known] = parse_off_keyword(kw);
+    if (!known)
         refuse(path, "not a valid off file: the keyword '" + std::string(kw) +
                          "' is not supported (ctmap reads [ST][C][N][4]OFF, text or BINARY)");
     const int H = homogeneous ? 1 : 0;

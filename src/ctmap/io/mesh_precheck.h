@@ -15,6 +15,13 @@ namespace ctmap {
 /// \throw BadInput naming `path` and the line or element.
 void check_ply_declarations(const std::string_view path, std::string_view bytes);
 
+/// The parts of an OFF keyword [ST][C][N][4]OFF. `known` is false when anything else precedes
+/// "OFF". \pre `keyword` ends with "OFF".
+struct OffKeyword {
+    bool textures = false, colours = false, normals = false, homogeneous = false, known = true;
+};
+OffKeyword parse_off_keyword(std::string_view keyword);
+
 /// OFF (text, [ST][C][N][4]OFF): every vertex and face line as CGAL's scanner will read it: only
 /// finite numbers; enough numbers for the header's coordinates, normals and texture coordinates;
 /// a face's corner count an integer of at least 3 that fits in the file, its indices integers in
