@@ -13,28 +13,39 @@ using face_frame::CDT;
 using face_frame::K;
 using Point = K::Point_2;
 
-/// The faces of input face `F` (a connected set: F's refinement) and their vertices.
-struct Region {
+/// The cell of the run: the faces of input face F reachable from the run's vertices without
+/// crossing a path (another's, or this one's outside the run) or a side of F; `outline` holds the
+/// edges where the flood stopped (none touches the run).
+struct Cell {
     std::vector<int> faces, vertices;
+    std::vector<std::pair<int, int>> outline;
 };
 
-Region region_of(const WorkMesh& m, int seed_vertex, int F) {
-    Region r;
-    std::unordered_map<int, char> seen_face, seen_vertex;
+Cell cell_of(const WorkMesh& m, const std::unordered_set<int>& run, int F,
+             const std::unordered_set<std::uint64_t>& path_edges, const std::unordered_set<std::uint64_t>& own_edges) {
+    Cell c;
+    std::unordered_set<int> seen_face, seen_vertex;
     std::vector<int> stack;
-    for (int f : m.vertex_faces[seed_vertex])
-        if (m.origin[f] == F && !seen_face[f]) seen_face[f] = 1, stack.push_back(f);
+    for (int v : run)
+        for (int f : m.vertex_faces[v])
+            if (seen_face.insert(f).second) stack.push_back(f);
     while (!stack.empty()) {
         const int f = stack.back();
         stack.pop_back();
-        r.faces.push_back(f);
+        c.faces.push_back(f);
         for (int k = 0; k < 3; ++k) {
-            if (!seen_vertex[m.faces[f][k]]) seen_vertex[m.faces[f][k]] = 1, r.vertices.push_back(m.faces[f][k]);
-            for (int g : m.edge_faces[m.face_edges[f][k]])
-                if (g >= 0 && m.origin[g] == F && !seen_face[g]) seen_face[g] = 1, stack.push_back(g);
+            const int a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
+            if (seen_vertex.insert(a).second) c.vertices.push_back(a);
+            const auto& ef = m.edge_faces[m.face_edges[f][k]];
+            const int g = ef[0] == f ? ef[1] : ef[0];
+            const std::uint64_t key = edge_key(a, b);
+            const bool stop = g < 0 || m.origin[g] != F || path_edges.count(key) ||
+                              (own_edges.count(key) && !run.count(a) && !run.count(b));
+            if (stop) c.outline.emplace_back(a, b);
+            else if (seen_face.insert(g).second) stack.push_back(g);
         }
     }
-    return r;
+    return c;
 }
 
 /// Vertex `u` in the affine frame of input face `F` (face_frame.h): corners exact, points on a
@@ -66,19 +77,20 @@ Point frame_of(const WorkMesh& m, int F, int u) {
 }
 
 /// Replaces the run `poly[1 .. size-2]` of a path by the segment poly.front() - poly.back()
-/// inside input face F and re-triangulates F, if nothing is in the way (straighten_path's rules).
+/// inside input face F and re-triangulates the run's cell, if nothing is in the way
+/// (straighten_path's rules).
 bool straighten_run(WorkMesh& m, const std::vector<int>& poly, const std::vector<char>& blocked,
                     const std::unordered_set<std::uint64_t>& path_edges,
                     const std::unordered_set<std::uint64_t>& own_edges) {
     const int p = poly.front(), n = poly.back();
     if (m.edge_site(p, n)[0] >= 0) return false;  // both on one side of F: the segment would run along it
     const int F = m.origin[m.vertex_faces[poly[1]].front()];
-    const Region r = region_of(m, poly[1], F);
+    const std::unordered_set<int> run(poly.begin() + 1, poly.end() - 1);
+    const Cell cell = cell_of(m, run, F, path_edges, own_edges);
     std::unordered_map<int, Point> at;
-    for (int u : r.vertices) at[u] = frame_of(m, F, u);
-    std::unordered_set<int> run(poly.begin() + 1, poly.end() - 1);
+    for (int u : cell.vertices) at[u] = frame_of(m, F, u);
     const Point P = at.at(p), N = at.at(n);
-    for (int u : r.vertices) {
+    for (int u : cell.vertices) {
         if (u == p || u == n || run.count(u)) continue;
         const Point& w = at[u];
         if ((CGAL::collinear(P, w, N) && CGAL::collinear_are_strictly_ordered_along_line(P, w, N)) || w == P || w == N)
@@ -93,35 +105,41 @@ bool straighten_run(WorkMesh& m, const std::vector<int>& poly, const std::vector
     }
     CDT cdt;
     std::unordered_map<int, CDT::Vertex_handle> handle;
-    for (int u : r.vertices) {
+    for (int u : cell.vertices) {
         if (run.count(u)) continue;
         CDT::Vertex_handle h = cdt.insert(at[u]);
         h->info() = u;
         handle[u] = h;
     }
     if (cdt.number_of_vertices() != handle.size()) return false;  // two points coincide in the frame
-    // Constraints: every path inside F (other paths, the rest of this one, the new segment).
-    // Checks: F's outline and every constraint are edges of the triangulation.
-    std::vector<std::pair<int, int>> constraints{{p, n}}, outline;
-    for (int f : r.faces)
+    for (const auto& [a, b] : cell.outline) cdt.insert_constraint(handle.at(a), handle.at(b));
+    cdt.insert_constraint(handle.at(p), handle.at(n));
+    if (cdt.number_of_vertices() != handle.size()) return false;  // the segment crossed the outline
+    if (!cdt.is_edge(handle.at(p), handle.at(n))) return false;
+    for (const auto& [a, b] : cell.outline)
+        if (!cdt.is_edge(handle.at(a), handle.at(b))) return false;
+    // The cell: the faces not reached from outside the convex hull without crossing a constraint.
+    std::unordered_set<CDT::Face_handle> outside;
+    std::vector<CDT::Face_handle> stack;
+    for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f)
+        if (cdt.is_infinite(f) && outside.insert(f).second) stack.push_back(f);
+    while (!stack.empty()) {
+        const CDT::Face_handle f = stack.back();
+        stack.pop_back();
         for (int k = 0; k < 3; ++k) {
-            const int a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
-            if (run.count(a) || run.count(b)) continue;
-            const auto& ef = m.edge_faces[m.face_edges[f][k]];
-            const int other = ef[0] == f ? ef[1] : ef[0];
-            if (other < 0 || m.origin[other] != F) outline.emplace_back(a, b);
-            else if (a < b && (path_edges.count(edge_key(a, b)) || own_edges.count(edge_key(a, b))))
-                constraints.emplace_back(a, b);
+            const CDT::Face_handle g = f->neighbor(k);
+            if (!f->is_constrained(k) && outside.insert(g).second) stack.push_back(g);
         }
-    for (const auto& [a, b] : constraints) cdt.insert_constraint(handle.at(a), handle.at(b));
-    if (cdt.number_of_vertices() != handle.size()) return false;  // a constraint crossed another
-    for (const auto& pairs : {constraints, outline})
-        for (const auto& [a, b] : pairs)
-            if (!cdt.is_edge(handle.at(a), handle.at(b))) return false;
+    }
     std::vector<Tri> added;
-    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+    std::unordered_set<int> covered;
+    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+        if (outside.count(f)) continue;
         added.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
-    m.replace_faces(r.faces, added, std::vector<int>(added.size(), F));
+        for (int k = 0; k < 3; ++k) covered.insert(f->vertex(k)->info());
+    }
+    if (covered.size() != handle.size()) return false;  // a vertex of the cell outside it: something is amiss
+    m.replace_faces(cell.faces, added, std::vector<int>(added.size(), F));
     return true;
 }
 

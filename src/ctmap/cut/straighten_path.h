@@ -26,10 +26,11 @@ struct StraightenStats {
 /// by its insertion (ids >= `first_new`) and can be skipped: each run of them inside an input
 /// face F is replaced by the straight segment between the vertices before and after it, when
 /// that segment crosses no other path, passes through no vertex and the region between it and
-/// the run holds no blocked vertex (so the path keeps its side of every feature and path); F is
-/// then re-triangulated (CGAL's constrained Delaunay triangulation in F's affine frame, with
-/// every path inside F as a constraint and F's sides unchanged). Anything the exact predicates
-/// find amiss keeps the run as it was. Removed vertices keep their ids and lose their faces.
+/// the run holds no blocked vertex (so the path keeps its side of every feature and path); the
+/// run's cell (the faces of F around it up to the nearest paths and F's sides) is then
+/// re-triangulated: CGAL's constrained Delaunay triangulation in F's affine frame, with the
+/// cell's outline and the segment as constraints. Anything the exact predicates find amiss
+/// keeps the run as it was. Removed vertices keep their ids and lose their faces.
 /// \pre `chain` was just inserted (insert_path) and is not yet in `path_edges` or `blocked`;
 /// `path_edges` holds the edges of every other path.
 /// \return the chain without the removed vertices.

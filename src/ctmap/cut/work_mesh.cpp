@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <numeric>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "ctmap/border_loop.h"
 #include "ctmap/errors.h"
@@ -60,6 +62,10 @@ void WorkMesh::replace_faces(const std::vector<int>& removed, const std::vector<
         }
     }
     vertex_faces.resize(positions.size());
+    // The removed faces' edges by key (a scan of them per added edge was quadratic in the faces
+    // replaced: straighten_path replaces a whole input face's refinement at once).
+    std::unordered_map<std::uint64_t, int> touched;
+    for (int x : touched_edges) touched.emplace(edges[x], x);
     for (std::size_t i = 0; i < added.size(); ++i) {
         int id;
         if (i < removed.size()) {
@@ -78,9 +84,10 @@ void WorkMesh::replace_faces(const std::vector<int>& removed, const std::vector<
             // The edge as it already is: on a live face, or (both its faces replaced) among the
             // removed faces' edges, which keeps its id.
             int e = find_edge(a, b);
-            if (e < 0)
-                for (int x : touched_edges)
-                    if (edges[x] == edge_key(a, b)) e = x;
+            if (e < 0) {
+                const auto it = touched.find(edge_key(a, b));
+                if (it != touched.end()) e = it->second;
+            }
             if (e < 0) {
                 e = int(edges.size());
                 edges.push_back(edge_key(a, b));
@@ -125,25 +132,22 @@ std::vector<WorkMesh::FanEntry> WorkMesh::fan(int v) const {
         entries.push_back({f, t[(k + 1) % 3], t[(k + 2) % 3]});
     }
     // Start at the face whose `from` edge is on the border (no face ends at it), else anywhere.
+    // Linear in the degree (hash maps): straightened paths give some vertices thousands of faces.
+    std::unordered_map<int, int> starting_at;  // `from` vertex -> entry
+    std::unordered_set<int> ends;
+    for (int i = 0; i < int(entries.size()); ++i) starting_at[entries[i].from] = i, ends.insert(entries[i].to);
     int start = 0;
-    for (int i = 0; i < int(entries.size()); ++i) {
-        const bool ended = std::any_of(entries.begin(), entries.end(), [&](const FanEntry& e) { return e.to == entries[i].from; });
-        if (!ended) {
+    for (int i = 0; i < int(entries.size()); ++i)
+        if (!ends.count(entries[i].from)) {
             start = i;
             break;
         }
-    }
     std::vector<FanEntry> out{entries[start]};
-    std::vector<char> used(entries.size(), 0);
-    used[start] = 1;
     while (out.size() < entries.size()) {
-        const int want = out.back().to;
-        int next = -1;
-        for (int i = 0; i < int(entries.size()); ++i)
-            if (!used[i] && entries[i].from == want) next = i;
-        if (next < 0) throw InternalError("the mesh is not manifold around vertex " + std::to_string(v));
-        used[next] = 1;
-        out.push_back(entries[next]);
+        const auto it = starting_at.find(out.back().to);
+        if (it == starting_at.end() || it->second == start)
+            throw InternalError("the mesh is not manifold around vertex " + std::to_string(v));
+        out.push_back(entries[it->second]);
     }
     return out;
 }
