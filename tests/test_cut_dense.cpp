@@ -3,7 +3,7 @@
 // one-to-one map (the barycentric mix of Tutte's embedding), so a valid map exists. Before the
 // path spacing followed the distance between a path's ends (CutOptions::reach_spacing_factor),
 // this gave "cut: no valid path between features 651 and 7855 after refinement". The map stops
-// after the paper's relaxation (the optimiser on 535 k faces takes a minute: bench/hard_layouts).
+// after the paper's relaxation (the optimiser on the 202 k faces the cut makes is timed by bench/hard_layouts).
 #include <cstdio>
 
 #include "ctmap/certify/certificate.h"
