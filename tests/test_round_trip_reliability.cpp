@@ -26,6 +26,16 @@ namespace fs = std::filesystem;
 
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
+/// The "N vertices inserted" and "M faces" parts of a `map` report's summary line ("" if absent).
+std::string insertion_summary(const std::string& report) {
+    const std::size_t at = report.find(" vertices inserted");
+    const std::size_t start = report.rfind(", ", at);
+    const std::size_t faces = report.find(" faces", at);
+    if (at == std::string::npos || start == std::string::npos || faces == std::string::npos) return "";
+    const std::size_t count = report.rfind(' ', faces - 1) + 1;
+    return report.substr(start + 2, at - start - 2) + " inserted, " + report.substr(count, faces - count) + " faces";
+}
+
 /// `mesh` as OFF with every double written exactly (17 digits).
 std::string off_text(const TriMesh& mesh) {
     std::ostringstream os;
@@ -125,6 +135,12 @@ FloatCase float_case(const TempDir& d, int digits) {
 
 TEST(RoundTripReliability, PointFeaturesCopiedFromFloatFilesLandOnTheirVertices) {
     TempDir d;
+    // The reference: the same features given as vertex indices on the OFF file.
+    const RunResult ref = run_ctmap("map " + q(data("meshes/nefertiti.off")) + " " +
+                                    q(data("features/nefertiti_astronaut.json")) + " -o " + q(d / "ref.obj"));
+    ASSERT_EQ(ref.code, 0) << ref.out;
+    const std::string expected = insertion_summary(ref.out);
+    ASSERT_FALSE(expected.empty()) << ref.out;
     // Before: exit 3 ("internal failure") for points exactly at float32 vertices; and points
     // printed with 4 decimals were inserted beside their border vertices, off the border.
     for (const int digits : {0, 7, 4}) {
@@ -132,9 +148,10 @@ TEST(RoundTripReliability, PointFeaturesCopiedFromFloatFilesLandOnTheirVertices)
         const FloatCase c = float_case(d, digits);
         for (const std::string& mesh : {c.ply, c.stl}) {
             const TexturedMesh map = map_and_check(d, mesh, c.features, "float.obj");
-            // 16 features, every one on an input vertex: nothing but path vertices was inserted.
+            // 16 features, every one on an input vertex: the same vertices inserted as with
+            // vertex indices, nothing more (a point beside its vertex would add one and a patch).
             const RunResult r = run_ctmap("map " + q(mesh) + " " + q(c.features) + " -o " + q(d / "float.obj"));
-            EXPECT_TRUE(has(r.out, "123 vertices inserted")) << r.out;
+            EXPECT_EQ(insertion_summary(r.out), expected) << r.out;
             if (digits == 4) EXPECT_TRUE(has(r.out, "note: 3D point features moved onto the mesh by up to")) << r.out;
         }
     }
@@ -277,11 +294,14 @@ TEST(RoundTripReliability, CheckReadsTheGlbThatMapWritesAndNamesItsFiles) {
     TempDir d;
     const std::string features = data("features/nefertiti_astronaut.json");
     RunResult r = run_ctmap("map " + q(data("meshes/nefertiti.off")) + " " + q(features) + " --image " +
-                            q(data("images/astronaut.png")) + " -o " + q(d / "m.obj") + " --glb " + q(d / "m.glb") + " -q");
+                            q(data("images/astronaut.png")) + " -o " + q(d / "m.obj") + " --glb " + q(d / "m.glb"));
     ASSERT_EQ(r.code, 0) << r.out;
+    const std::string summary = insertion_summary(r.out);
+    const std::string faces = summary.substr(summary.rfind(", ") + 2);  // "N faces"
     r = run_ctmap("check " + q(d / "m.glb") + " --features " + q(features));
     EXPECT_EQ(r.code, 0) << r.out;
-    EXPECT_TRUE(has(r.out, "m.glb: valid (808 triangles, 16 features)")) << r.out;
+    const std::string triangles = faces.substr(0, faces.find(' ')) + " triangles";
+    EXPECT_TRUE(has(r.out, "m.glb: valid (" + triangles + ", 16 features)")) << r.out << "\nmap said: " << summary;
     // A map without UVs, and features that are not on the map: both messages name the files.
     r = run_ctmap("convert " + q(data("meshes/nefertiti.off")) + " -o " + q(d / "plain.obj"));
     ASSERT_EQ(r.code, 0) << r.out;
