@@ -30,16 +30,17 @@ using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
     if (argc < 4) {
-        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] | hard_layouts points "
-                     "MESH N [--seed S] [--refine paper|isometric]\n";
+        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] [--guide off|on|automatic] | "
+                     "hard_layouts points MESH N [--seed S] [--refine paper|isometric] [--guide off|on|automatic]\n";
         return 2;
     }
     const std::string kind = argv[1], mesh_file = argv[2];
     const int n = std::stoi(argv[3]);
     const double twist = kind == "twist" && argc > 4 ? std::stod(argv[4]) : 0;
     unsigned seed = 1;
-    std::string refine = "isometric";
+    std::string refine = "isometric", guide = "automatic";
     for (int i = 4; i + 1 < argc; ++i) {
+        if (std::string(argv[i]) == "--guide") guide = argv[i + 1];
         if (std::string(argv[i]) == "--seed") seed = unsigned(std::stoul(argv[i + 1]));
         if (std::string(argv[i]) == "--refine") refine = argv[i + 1];
     }
@@ -50,12 +51,14 @@ int main(int argc, char** argv) {
     if (kind == "twist") features = test::map_features_of(test::random_features(mesh, tutte, n, 12, twist, rng));
     else features = test::point_features(mesh, tutte, n, int(WorkMesh(mesh).border_loop().size()), rng);
     nlohmann::ordered_json row{{"kind", kind}, {"mesh", mesh_file}, {"features", features.size()},
-                               {"twist", twist}, {"seed", seed}, {"refine", refine},
+                               {"twist", twist}, {"seed", seed}, {"refine", refine}, {"guide", guide},
                                    {"faces_in", mesh.num_faces()}};
     const auto t0 = Clock::now();
     try {
         MapOptions options;
         if (refine == "paper") options.refine_mode = RefineMode::paper;
+        if (guide == "off") options.cut.guide = CutOptions::Guide::off;
+        if (guide == "on") options.cut.guide = CutOptions::Guide::on;
         // Progress on stderr (a line per 500 paths): a long run shows where it is.
         options.progress = [t0](const std::string& stage, int done, int total) {
             if (done % 500 == 0 || done == total)
@@ -70,6 +73,8 @@ int main(int argc, char** argv) {
         row["vertices_inside_input_faces"] = r.cut_stats.vertices_inside_faces;
         row["straightened_away"] = r.cut_stats.straightened_vertices;
         row["path_length"] = r.cut_stats.path_length;
+        row["guided"] = r.cut_stats.guided;
+        row["guide_restart_faces"] = r.cut_stats.guide_restart_faces;
         row["valid"] = r.certificate.valid;
         row["ms"] = {{"triangulate", r.timings_ms.triangulate}, {"paths", r.timings_ms.paths}, {"embed", r.timings_ms.embed}, {"refine", r.timings_ms.refine}, {"optimise", r.timings_ms.optimise}};
     } catch (const std::exception& e) {

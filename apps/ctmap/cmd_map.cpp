@@ -162,8 +162,15 @@ void print_map_summary(const MapArgs& a, const MapRun& run, std::ostream& os) {
     const MapTimings& t = r.timings_ms;
     os << "  " << r.triangulation.triangles.size() << " patches, " << r.cut_stats.paths << " paths, "
        << r.cut.mesh.num_vertices() - r.cut.num_input_vertices + r.point_features << " vertices inserted ("
-       << r.cut_stats.steiner_vertices << " by the fallback), " << r.cut.mesh.num_faces() << " faces\n"
-       << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate
+       << r.cut_stats.steiner_vertices << " by the fallback), " << r.cut.mesh.num_faces() << " faces\n";
+    if (r.cut_stats.guided)
+        os << "  note: the image twists the features against the surface: the paths were searched again along the "
+              "features' interpolated map"
+           << (r.cut_stats.guide_restart_faces > 0
+                   ? " (shortest paths on the surface had grown the mesh to " + std::to_string(r.cut_stats.guide_restart_faces) + " faces)"
+                   : std::string())
+           << "\n";
+    os << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate
        << " degenerate, feature error " << c.feature_max_error << ", border " << (c.border_simple ? "simple" : "crossing")
        << ")\n";
     const Distortion& dr = r.after_relax;

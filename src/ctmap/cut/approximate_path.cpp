@@ -86,6 +86,14 @@ public:
         const Vec3& b = m_.positions[key_hi(m_.edges[e])];
         return a + t_of(e, j) * (b - a);
     }
+    /// The node's point in the guide map. \pre c.guide is set.
+    Vec2 guide_position(Node x) const {
+        const std::vector<Vec2>& g = *c_.guide;
+        if (is_vertex(x)) return g[x];
+        auto [e, j] = locate(x);
+        const Vec2& a = g[key_lo(m_.edges[e])];
+        return a + t_of(e, j) * (g[key_hi(m_.edges[e])] - a);
+    }
     bool blocked(int v) const { return (*c_.blocked)[v] && v != c_.source && v != c_.target; }
     bool path_edge(int a, int b) const { return c_.path_edges->count(edge_key(a, b)) > 0; }
 
@@ -217,12 +225,15 @@ std::optional<FoundPath> search(const WorkMesh& mesh, const PathConstraints& c, 
     states.begin(mesh);
     const SteinerGraph g(mesh, c, spacing, states, corridor);
     const Vec3 goal = mesh.positions[c.target];
+    const bool guided = c.guide != nullptr;
+    const Vec2 guide_goal = guided ? (*c.guide)[c.target] : Vec2::Zero();
+    auto guide_of = [&](Node x) { return guided ? g.guide_position(x) : Vec2::Zero(); };
     auto state = [&](Node x) -> NodeState& { return states.at(g, x); };
     using Item = std::pair<double, Node>;  // (distance + bound, node)
     std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
     const Node source = Node(c.source), target = Node(c.target);
     state(source).dist = 0;
-    open.push({(mesh.positions[c.source] - goal).norm(), source});
+    open.push({(mesh.positions[c.source] - goal).norm() + c.guide_weight * (guide_of(source) - guide_goal).norm(), source});
     bool reached = false;
     while (!open.empty()) {
         const Node x = open.top().second;
@@ -236,18 +247,20 @@ std::optional<FoundPath> search(const WorkMesh& mesh, const PathConstraints& c, 
         }
         if (x != source && g.is_vertex(x) && g.blocked(int(x))) continue;
         const Vec3 px = g.position(x);
+        const Vec2 gx = guide_of(x);
         const double dx = sx.dist;
         g.for_each_move(x, [&](Node y, int face) {
             if (g.is_vertex(y) && !g.may_enter_vertex(x, int(y), face)) return;
             NodeState& sy = state(y);  // may grow the arrays: no reference to sx is used after this
             if (sy.done) return;
             const Vec3 py = g.position(y);
-            const double d = dx + (py - px).norm();
+            const Vec2 gy = guide_of(y);
+            const double d = dx + (py - px).norm() + c.guide_weight * (gy - gx).norm();
             if (d < sy.dist) {
                 sy.dist = d;
                 sy.pred = x;
                 sy.pred_face = face;
-                open.push({d + (py - goal).norm(), y});
+                open.push({d + (py - goal).norm() + c.guide_weight * (gy - guide_goal).norm(), y});
             }
         });
     }

@@ -25,6 +25,11 @@ struct PathConstraints {
     const std::vector<char>* blocked = nullptr;                 ///< per vertex: on a path or a feature
     const std::unordered_set<std::uint64_t>* path_edges = nullptr;  ///< edges of embedded paths
     EndSector source_sector, target_sector;
+    /// A guide map (guide_map.h), one point per vertex, or none: a move then costs its length on
+    /// the surface plus `guide_weight` times its length in the guide (both in world units: the
+    /// weight includes the guide's scale), and the search looks for a path short in both.
+    const std::vector<Vec2>* guide = nullptr;
+    double guide_weight = 0;
 };
 
 /// Options of the search.

@@ -1,13 +1,17 @@
 #include "ctmap/cut/cut_mesh.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <set>
 
 #include "ctmap/border_loop.h"
 #include "ctmap/cut/approximate_path.h"
 #include "ctmap/cut/exact_geodesic.h"
+#include "ctmap/cut/guide_map.h"
 #include "ctmap/cut/insert_path.h"
 #include "ctmap/cut/straighten_path.h"
 #include "ctmap/cut/work_mesh.h"
@@ -24,6 +28,7 @@ struct Network {
     std::vector<char> blocked;
     std::unordered_set<std::uint64_t> path_edges;
     std::map<std::pair<int, int>, std::vector<int>> chains;  // (a, b) -> vertex chain from a to b
+    std::vector<Vec2> guide;  // per vertex (guided cut only)
 
     Network(const TriMesh& m, const std::vector<int>& feature_vertex, const FeatureTriangulation& t)
         : mesh(m), ft(t), fv(feature_vertex), blocked(m.positions.size(), 0) {
@@ -94,6 +99,18 @@ struct Network {
     }
 };
 
+/// Area of the surface over the area of the image triangles: the square root scales the guide.
+double area_ratio(const TriMesh& m, const FeatureTriangulation& ft) {
+    double surface = 0, image = 0;
+    for (const Tri& t : m.faces)
+        surface += 0.5 * (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]).norm();
+    for (const Tri& t : ft.triangles) {
+        const Vec2 a = ft.points[t[1]] - ft.points[t[0]], b = ft.points[t[2]] - ft.points[t[0]];
+        image += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    }
+    return image > 0 ? surface / image : 1.0;
+}
+
 double mean_edge_length(const TriMesh& m) {
     double sum = 0;
     for (const Tri& t : m.faces)
@@ -116,11 +133,21 @@ std::vector<int> border_features(const TriMesh& mesh, const std::vector<int>& fe
     return out;
 }
 
-CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, const FeatureTriangulation& ft,
-                 const CutOptions& opt, CutStats* stats_out) {
-    CutStats stats;
+namespace {
+
+/// The cut with the paths searched on the surface (`guided` false) or with the guide map; gives
+/// up (nothing) when the work mesh gets more than `face_limit` faces.
+std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& feature_vertex,
+                                const FeatureTriangulation& ft, const CutOptions& opt, bool guided,
+                                std::size_t face_limit, CutStats& stats) {
     Network net(input, feature_vertex, ft);
     const int nfeat = int(feature_vertex.size());
+    double guide_weight = 0;
+    if (guided) {
+        net.guide = guide_map(input, feature_vertex, ft);
+        guide_weight = opt.guide_weight * std::sqrt(area_ratio(input, ft));
+        stats.guided = true;
+    }
 
     // Border edges of the triangulation follow the mesh border (Table 1, first branch).
     std::vector<int> loop = net.mesh.border_loop();
@@ -189,6 +216,11 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
             c.path_edges = &net.path_edges;
             c.source_sector = net.sector(u, w);
             c.target_sector = net.sector(w, u);
+            if (guided) {
+                extend_guide(net.mesh, net.guide);
+                c.guide = &net.guide;
+                c.guide_weight = guide_weight;
+            }
             if (opt.exact_geodesics && attempt == 0) {
                 found = find_exact_path(net.mesh, c);
                 if (found) {
@@ -217,7 +249,6 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
         if (!found)
             throw InternalError("cut: no valid path between features " + std::to_string(u) + " and " +
                                 std::to_string(w) + " after refinement");
-        stats.path_length += found->length;
         const int first_new = net.mesh.num_vertices();
         std::vector<int> chain = insert_path(net.mesh, found->nodes);
         if (opt.straighten) {
@@ -226,9 +257,16 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
             stats.straightened_vertices += st.removed_vertices;
             stats.kept_runs += st.kept_runs;
         }
+        // The length on the surface (a guided search's own lengths include the guide's).
+        for (std::size_t k = 0; k + 1 < chain.size(); ++k)
+            stats.path_length += (net.mesh.positions[chain[k + 1]] - net.mesh.positions[chain[k]]).norm();
         net.add_chain(u, w, chain);
         ++stats.paths;
         if (opt.progress) opt.progress(i + 1, total);
+        if (net.mesh.faces.size() > face_limit) {
+            stats.guide_restart_faces = int(net.mesh.faces.size());
+            return std::nullopt;
+        }
     }
 
     // Patches: faces joined across non-path edges; each image triangle (a, b, c) owns the region
@@ -320,8 +358,29 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
     }
     stats.inserted_vertices = int(out.mesh.positions.size()) - input.num_vertices();
     out.steiner_vertices = stats.steiner_vertices;
-    if (stats_out) *stats_out = stats;
     return out;
+}
+
+}  // namespace
+
+CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, const FeatureTriangulation& ft,
+                 const CutOptions& opt, CutStats* stats_out) {
+    CutStats stats;
+    std::optional<CutMesh> out;
+    const std::size_t unlimited = std::numeric_limits<std::size_t>::max();
+    if (opt.guide == CutOptions::Guide::automatic) {
+        const double limit = opt.growth_limit * (double(input.faces.size()) + 20.0 * double(feature_vertex.size()));
+        out = cut_with(input, feature_vertex, ft, opt, false, std::size_t(std::min(limit, 1e18)), stats);
+        if (!out) {
+            const int restart = stats.guide_restart_faces;
+            stats = CutStats();
+            stats.guide_restart_faces = restart;
+        }
+    }
+    if (!out) out = cut_with(input, feature_vertex, ft, opt, opt.guide != CutOptions::Guide::off, unlimited, stats);
+    if (!out) throw InternalError("cut: the cut gave up with no limit on its growth");
+    if (stats_out) *stats_out = stats;
+    return std::move(*out);
 }
 
 }  // namespace ctmap

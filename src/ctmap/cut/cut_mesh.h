@@ -67,6 +67,18 @@ struct CutOptions {
     /// Straighten each inserted path inside every input face it crosses (straighten_path.h):
     /// bounds the growth of the mesh where paths run side by side.
     bool straighten = true;
+    /// Paths short on the surface only (the paper), short in the guide map as well
+    /// (guide_map.h), or (automatic) on the surface first and again guided from scratch when the
+    /// work mesh outgrows `growth_limit` times (input faces + 20 per feature): dense layouts need
+    /// about 20 faces per feature (10,034 points on nefertiti: 201,712 faces). Twisted layouts (image
+    /// neighbours in other directions than on the surface) make surface paths wind ever longer
+    /// around the earlier ones: the guide takes them near their straight image edges instead.
+    enum class Guide { off, on, automatic };
+    Guide guide = Guide::automatic;
+    /// A guided move costs its surface length plus this times its guide length, the guide scaled
+    /// to the surface's area.
+    double guide_weight = 4;
+    double growth_limit = 6;
     /// Called with a short message as paths are inserted (for progress lines).
     std::function<void(int done, int total)> progress;
 };
@@ -88,6 +100,10 @@ struct CutStats {
     /// avoids), or inside an input face (Steiner vertices, and path vertices straightening kept).
     int vertices_on_input_edges = 0;
     int vertices_inside_faces = 0;
+    /// The paths were searched with the guide map; `guide_restart_faces`: the work mesh's faces
+    /// when the surface cut was given up for the guided one (0: no restart).
+    bool guided = false;
+    int guide_restart_faces = 0;
 };
 
 /// The Steiner point spacing the path search of `cut_mesh` uses on `mesh` (world units):

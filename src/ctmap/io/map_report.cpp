@@ -43,7 +43,11 @@ nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
                    {"path_crossings_of_input_edges", r.cut_stats.vertices_on_input_edges},
                    {"vertices_inside_input_faces", r.cut_stats.vertices_inside_faces},
                    {"path_vertices_straightened_away", r.cut_stats.straightened_vertices},
-                   {"path_length", r.cut_stats.path_length}};
+                   {"path_length", r.cut_stats.path_length},
+                   // Paths searched along the guide map (cut/guide_map.h), and the faces the
+                   // surface cut had reached when it was given up for that (0: it was not).
+                   {"guided_paths", r.cut_stats.guided},
+                   {"surface_cut_given_up_at_faces", r.cut_stats.guide_restart_faces}};
     nlohmann::json added = nlohmann::json::array();
     const AutoBorder& ab = r.auto_border;
     for (std::size_t i = 0; i < ab.vertex.size(); ++i) {
