@@ -5,7 +5,9 @@
 #include <map>
 #include <set>
 
+#include "ctmap/certify/certificate.h"
 #include "ctmap/cut/cut_mesh.h"
+#include "ctmap/map_texture.h"
 
 namespace ctmap::test {
 
@@ -105,6 +107,20 @@ inline void expect_valid_cut(const TriMesh& input, const FeatureTriangulation& f
                 if (m.faces[f][k] == cut.feature_vertex[i]) got.insert(cut.face_patch[f]);
         EXPECT_EQ(want, got) << "feature " << i;
     }
+}
+
+/// The map of `features` stopping after the paper's relaxation (`opt.refine_mode` is set to
+/// paper), with the cut checked and the map certified (0 flipped, features exact).
+inline MapResult certified_paper_map(const TriMesh& mesh, const std::vector<MapFeature>& features, MapOptions opt,
+                                     const std::string& what) {
+    opt.refine_mode = RefineMode::paper;
+    MapResult r = map_texture(mesh, features, opt);
+    expect_valid_cut(mesh, r.triangulation, r.cut, what);
+    const Certificate cert = certify(r.textured(), r.cut.feature_vertex, r.feature_uv, {false});
+    EXPECT_TRUE(cert.valid) << what;
+    EXPECT_EQ(cert.flipped, 0) << what;
+    EXPECT_EQ(cert.feature_max_error, 0.0) << what;
+    return r;
 }
 
 }  // namespace ctmap::test

@@ -18,19 +18,12 @@
 namespace ctmap::test {
 namespace {
 
-/// The map stopping after the paper's relaxation, the cut checked and the map certified.
+/// The map stopping after the paper's relaxation with the cut's `guide`, checked and certified.
 MapResult certified_map(const TriMesh& mesh, const std::vector<MapFeature>& features, CutOptions::Guide guide,
                         const std::string& what) {
     MapOptions opt;
-    opt.refine_mode = RefineMode::paper;
     opt.cut.guide = guide;
-    MapResult r = map_texture(mesh, features, opt);
-    expect_valid_cut(mesh, r.triangulation, r.cut, what);
-    const Certificate cert = certify(r.textured(), r.cut.feature_vertex, r.feature_uv, {false});
-    EXPECT_TRUE(cert.valid) << what;
-    EXPECT_EQ(cert.flipped, 0) << what;
-    EXPECT_EQ(cert.feature_max_error, 0.0) << what;
-    return r;
+    return certified_paper_map(mesh, features, opt, what);
 }
 
 std::vector<MapFeature> twisted(const TriMesh& mesh, double twist) {
