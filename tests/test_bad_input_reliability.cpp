@@ -167,6 +167,11 @@ TEST(BadInputReliability, DeclaredCountsAreCheckedAgainstTheFileSize) {
                              std::string(4, '\0') + std::string(36, '\0') + "\x7f\xff\xff\xff" + std::string(12, '\0');
     write_file(d / "binary.off", off_binary);
     write_file(d / "property_first.ply", "ply\nformat ascii 1.0\nproperty float x\nelement vertex 3\nend_header\n0\n0\n0\n");
+    // A list count that is not an integer: CGAL read "-1.3" as 4294967295 values (2 GB; fuzz_ply-7).
+    write_file(d / "real_count.ply", ply + "element face 1\nproperty list uint32 int vertex_indices\nend_header\n" +
+                                         "0 0 0\n1 0 0\n0 1 0\n-1.3 0 1 2\n");
+    expect_refused(d, "info " + q(d / "real_count.ply"), d / "real_count.ply",
+                   {"face 0: the count of its list 'vertex_indices' is '-1.3', not a non-negative integer"});
     expect_refused(d, "info " + q(d / "corners.off"), d / "corners.off", {"face 0", "2000000000"});
     expect_refused(d, "info " + q(d / "vertices.ply"), d / "vertices.ply", {"3000000000 vertex elements"});
     expect_refused(d, "info " + q(d / "list.ply"), d / "list.ply", {"face 0 declares a list of 200 values"});

@@ -42,6 +42,15 @@ struct Tokens {
     std::size_t left() const { return text.size() - at; }
 };
 
+/// `s` with every byte outside printable ASCII shown as '?' (names and tokens of a corrupt file
+/// quoted in a message).
+std::string printable(std::string_view s) {
+    std::string out(s);
+    for (char& c : out)
+        if (c < 0x20 || c > 0x7e) c = '?';
+    return out;
+}
+
 bool as_count(std::string_view t, long long& v) {
     if (!t.empty() && t[0] == '+') t.remove_prefix(1);
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
@@ -169,7 +178,12 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
                     if (!t.next(tok)) return;  // truncated: the reader and diagnose_mesh_file say where
                     long long n = 0;
                     if (!p.list) continue;
-                    if (!as_count(tok, n)) return;
+                    // CGAL reads the count as its integer type: "-1.3" became 4294967295 values
+                    // and 2 GB allocated (a fuzz input). A count is a non-negative integer.
+                    if (!as_count(tok, n))
+                        refuse(path, "not a valid ply file: " + printable(e.name) + " " + std::to_string(i) +
+                                         ": the count of its list '" + printable(p.name) + "' is '" +
+                                         printable(tok.substr(0, 32)) + "', not a non-negative integer");
                     if ((long double)n * 2 > (long double)t.left() + 2)
                         refuse(path, "not a valid ply file: " + e.name + " " + std::to_string(i) + " declares a list of " +
                                          std::to_string(n) + " values, more than the file holds");
