@@ -297,6 +297,7 @@ TEST(RoundTripReliability, CheckReadsTheGlbThatMapWritesAndNamesItsFiles) {
                             q(data("images/astronaut.png")) + " -o " + q(d / "m.obj") + " --glb " + q(d / "m.glb"));
     ASSERT_EQ(r.code, 0) << r.out;
     const std::string summary = insertion_summary(r.out);
+    ASSERT_FALSE(summary.empty()) << r.out;
     const std::string faces = summary.substr(summary.rfind(", ") + 2);  // "N faces"
     r = run_ctmap("check " + q(d / "m.glb") + " --features " + q(features));
     EXPECT_EQ(r.code, 0) << r.out;

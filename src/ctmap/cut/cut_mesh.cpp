@@ -221,7 +221,7 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
                 c.guide = &net.guide;
                 c.guide_weight = guide_weight;
             }
-            if (opt.exact_geodesics && attempt == 0) {
+            if (opt.exact_geodesics && attempt == 0 && !guided) {  // a geodesic ignores the guide
                 found = find_exact_path(net.mesh, c);
                 if (found) {
                     ++stats.exact_paths;

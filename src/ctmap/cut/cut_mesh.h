@@ -55,7 +55,8 @@ struct CutOptions {
     double reach_spacing_factor = 0.25;
     /// Paths from CGAL's exact geodesics (`find_exact_path`) instead of the Steiner-graph search,
     /// for comparison; a geodesic that breaks the path rules (it may cross a path, pass through a
-    /// blocked vertex or leave outside its sector) is replaced by the approximate search.
+    /// blocked vertex or leave outside its sector) is replaced by the approximate search. Not
+    /// used by a guided cut (a geodesic knows nothing of the guide).
     bool exact_geodesics = false;
     /// The coarse-to-fine search (see PathSearchOptions): vertex rings of the corridor (0: every
     /// path in the whole fine graph), and the distance between a path's ends, in spacings, from
