@@ -1,7 +1,6 @@
 #include "ctmap/refine/isometric.h"
 
 #include <Eigen/CholmodSupport>
-#include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <dlfcn.h>
@@ -112,11 +111,20 @@ struct FaceNewton {
 };
 
 FaceNewton face_newton(const Mat2& J) {
-    Eigen::JacobiSVD<Mat2> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Mat2 U = svd.matrixU(), V = svd.matrixV();
-    double s1 = svd.singularValues()[0], s2 = svd.singularValues()[1];
-    if (U.determinant() < 0) U.col(1) *= -1, s2 = -s2;  // signed SVD: U and V rotations
-    if (V.determinant() < 0) V.col(1) *= -1, s2 = -s2;
+    // The signed SVD J = U diag(s1, s2) V^T with U, V rotations, in closed form: with
+    // E, F, G, H the halved sums and differences of J's entries, s1 = |(E, H)| + |(F, G)|
+    // and U, V rotate by (a2 + a1) / 2 and -(a2 - a1) / 2 (a1 = atan2(G, F), a2 = atan2(H, E));
+    // s2 = det J / s1 rather than the difference of the hypotenuses, which cancels for a sliver.
+    // (Eigen's JacobiSVD gave the same to rounding at twice the cost.)
+    const double E = 0.5 * (J(0, 0) + J(1, 1)), F = 0.5 * (J(0, 0) - J(1, 1));
+    const double G = 0.5 * (J(1, 0) + J(0, 1)), H = 0.5 * (J(1, 0) - J(0, 1));
+    double s1 = std::sqrt(E * E + H * H) + std::sqrt(F * F + G * G);
+    double s2 = s1 > 0 ? J.determinant() / s1 : 0;
+    const double a1 = std::atan2(G, F), a2 = std::atan2(H, E);
+    const double phi = 0.5 * (a2 + a1), theta = 0.5 * (a2 - a1);
+    Mat2 U, V;
+    U << std::cos(phi), -std::sin(phi), std::sin(phi), std::cos(phi);
+    V << std::cos(theta), std::sin(theta), -std::sin(theta), std::cos(theta);
     // det J > 0 (the line search keeps it so) gives s2 > 0; a sliver whose determinant rounds to
     // zero or below gets the smallest positive value, so that its terms push it open.
     s1 = std::max(s1, 1e-12);
@@ -131,7 +139,8 @@ FaceNewton face_newton(const Mat2& J) {
     for (int i = 0; i < 4; ++i) n.mode[i] = U * m[i] * V.transpose();
     n.lambda[0] = 2 + 6 / (s1 * s1 * s1 * s1);
     n.lambda[1] = 2 + 6 / (s2 * s2 * s2 * s2);
-    n.lambda[2] = 2 + 2 * (s1 * s1 + s1 * s2 + s2 * s2) / std::pow(s1 * s2, 3);
+    const double p = s1 * s2;
+    n.lambda[2] = 2 + 2 * (s1 * s1 + s1 * s2 + s2 * s2) / (p * p * p);
     n.lambda[3] = std::max(0.0, 2 - 2 * (1 / (s1 * s1 * s1) + 1 / (s2 * s2 * s2)) / (s1 + s2));
     n.dpsi = U * Vec2(2 * s1 - 2 / (s1 * s1 * s1), 2 * s2 - 2 / (s2 * s2 * s2)).asDiagonal() * V.transpose();
     return n;
@@ -377,6 +386,17 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     // than the work there (measured on ctmap serve's moves).
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
     Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> small_solver;
+    // Relaxed supernode amalgamation: CHOLMOD merges supernodes of up to 16, 64 and 192 columns
+    // while under 99%, 40% and 20% of the merged block are zeros (its defaults: 4, 16, 48 columns,
+    // 80%, 10%, 5%). Fewer, larger supernodes: each costs an OpenMP region (a futex wake even when
+    // serial, see SerialOpenMp) and a BLAS call, which on these systems cost more than the added
+    // fill. A factorisation on mannequin-devil with 50 features (30,430 unknowns) went from 68 to
+    // 35 ms, on lion-head with 50 (20,316) from 41 to 24 ms (BENCHMARKS.md, "Speed against CGAL's ARAP").
+    {
+        cholmod_common& c = solver.cholmod();
+        c.nrelax[0] = 16, c.nrelax[1] = 64, c.nrelax[2] = 192;
+        c.zrelax[0] = 0.99, c.zrelax[1] = 0.4, c.zrelax[2] = 0.2;
+    }
     if (local_only) small_solver.analyzePattern(K);
     else solver.analyzePattern(K);
 
