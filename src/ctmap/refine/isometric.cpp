@@ -437,7 +437,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     // gradient is new and the factorisation is reused, which is a descent direction still (the
     // stale Hessian is positive definite) and costs a solve instead of a factorisation.
     bool refresh = true;
-    int stale = 0, stalled = 0;
+    int stale = 0, stalled = 0, contact = 0;
     double fresh_gain = 0;
     for (int it = 0; it < o.max_iterations;) {
         const double e0 = objective;
@@ -599,7 +599,12 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             stats.stop = "stalled";
             break;
         }
-        if (holds > 0 && small) {  // the border is in contact with itself and only creeps on
+        // The border is in contact with itself and only creeps on: five steps in a row that
+        // held border vertices and gained less than the tolerance. (Stopping at the first such
+        // step left 3% of the energy on mannequin-devil with 40 features, seed 48: the steps
+        // after a small one gained again.)
+        contact = holds > 0 && small ? contact + 1 : 0;
+        if (contact >= 5) {
             stats.stop = "border contact";
             break;
         }

@@ -64,7 +64,7 @@ struct IsometricStats {
     std::vector<double> energy;   ///< energy[0] on entry, energy[i] after iteration i
     bool converged = false;       ///< stopped by the tolerance (or at a point no step can improve)
     /// "tolerance", "iterations", "no descent step", "border contact" (the free border touches
-    /// itself and the steps it allows gain less than the tolerance), "stalled" (ten steps in a row
+    /// itself and five steps in a row that it held gained less than the tolerance), "stalled" (ten steps in a row
     /// with a new Hessian gained less than 1e-12 of the energy each: a vertex pinned by the barrier), "no free vertex"
     std::string stop;
     int factorisations = 0;       ///< numeric Cholesky factorisations (the dominant cost)
