@@ -4,7 +4,7 @@
 // (points inside faces, their image by the same barycentric mix of the Tutte map). Prints faces
 // in and out, the cut's counts, the time and the certificate; a failure prints its message.
 //
-//   hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric]
+//   hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE]
 //   hard_layouts points MESH N [--seed S] [--refine paper|isometric]
 // (--refine paper stops after the paper's relaxation: the cut and its certificate without the
 // optimiser, whose time on a mesh the cut grew to 10^5-10^6 faces is issue 11's subject.)
@@ -17,6 +17,7 @@
 #include <string>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/obj_io.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
 #include "random_features.h"
@@ -30,19 +31,20 @@ using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
     if (argc < 4) {
-        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] [--guide off|on|automatic] | "
-                     "hard_layouts points MESH N [--seed S] [--refine paper|isometric] [--guide off|on|automatic]\n";
+        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE] | "
+                     "hard_layouts points MESH N [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE]\n";
         return 2;
     }
     const std::string kind = argv[1], mesh_file = argv[2];
     const int n = std::stoi(argv[3]);
     const double twist = kind == "twist" && argc > 4 ? std::stod(argv[4]) : 0;
     unsigned seed = 1;
-    std::string refine = "isometric", guide = "automatic";
+    std::string refine = "isometric", guide = "automatic", obj;
     for (int i = 4; i + 1 < argc; ++i) {
         if (std::string(argv[i]) == "--guide") guide = argv[i + 1];
         if (std::string(argv[i]) == "--seed") seed = unsigned(std::stoul(argv[i + 1]));
         if (std::string(argv[i]) == "--refine") refine = argv[i + 1];
+        if (std::string(argv[i]) == "--obj") obj = argv[i + 1];
     }
     const TriMesh mesh = read_mesh(mesh_file);
     const std::vector<Vec2> tutte = test::tutte_map(mesh);
@@ -76,6 +78,9 @@ int main(int argc, char** argv) {
         row["guided"] = r.cut_stats.guided;
         row["guide_restart_faces"] = r.cut_stats.guide_restart_faces;
         row["valid"] = r.certificate.valid;
+        row["symmetric_dirichlet"] = r.certificate.distortion.symmetric_dirichlet;
+        row["conformal_mean"] = r.certificate.distortion.conformal_mean;
+        if (!obj.empty()) write_obj(r.textured(), obj);  // for `ctmap render --mode checker`
         row["ms"] = {{"triangulate", r.timings_ms.triangulate}, {"paths", r.timings_ms.paths}, {"embed", r.timings_ms.embed}, {"refine", r.timings_ms.refine}, {"optimise", r.timings_ms.optimise}};
     } catch (const std::exception& e) {
         row["error"] = e.what();
