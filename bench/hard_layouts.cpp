@@ -20,6 +20,7 @@
 #include "ctmap/io/obj_io.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
+#include "ctmap/subdivide.h"
 #include "random_features.h"
 
 namespace {
@@ -40,13 +41,17 @@ int main(int argc, char** argv) {
     const double twist = kind == "twist" && argc > 4 ? std::stod(argv[4]) : 0;
     unsigned seed = 1;
     std::string refine = "isometric", guide = "automatic", obj;
+    int levels = 0;  // --levels L: the input subdivided 1-to-4 L times first
+    int guide_subdivisions = CutOptions().guide_subdivisions;
     for (int i = 4; i + 1 < argc; ++i) {
         if (std::string(argv[i]) == "--guide") guide = argv[i + 1];
         if (std::string(argv[i]) == "--seed") seed = unsigned(std::stoul(argv[i + 1]));
         if (std::string(argv[i]) == "--refine") refine = argv[i + 1];
         if (std::string(argv[i]) == "--obj") obj = argv[i + 1];
+        if (std::string(argv[i]) == "--levels") levels = std::stoi(argv[i + 1]);
+        if (std::string(argv[i]) == "--guide-subdivisions") guide_subdivisions = std::stoi(argv[i + 1]);
     }
-    const TriMesh mesh = read_mesh(mesh_file);
+    const TriMesh mesh = subdivide_midpoint(read_mesh(mesh_file), levels);
     const std::vector<Vec2> tutte = test::tutte_map(mesh);
     std::mt19937 rng(seed);
     std::vector<MapFeature> features;
@@ -61,6 +66,7 @@ int main(int argc, char** argv) {
         if (refine == "paper") options.refine_mode = RefineMode::paper;
         if (guide == "off") options.cut.guide = CutOptions::Guide::off;
         if (guide == "on") options.cut.guide = CutOptions::Guide::on;
+        options.cut.guide_subdivisions = guide_subdivisions;
         // Progress on stderr (a line per 500 paths): a long run shows where it is.
         options.progress = [t0](const std::string& stage, int done, int total) {
             if (done % 500 == 0 || done == total)
@@ -77,6 +83,7 @@ int main(int argc, char** argv) {
         row["path_length"] = r.cut_stats.path_length;
         row["guided"] = r.cut_stats.guided;
         row["guide_restart_faces"] = r.cut_stats.guide_restart_faces;
+        row["guide_subdivisions"] = r.cut_stats.guide_subdivisions;
         row["valid"] = r.certificate.valid;
         row["symmetric_dirichlet"] = r.certificate.distortion.symmetric_dirichlet;
         row["conformal_mean"] = r.certificate.distortion.conformal_mean;

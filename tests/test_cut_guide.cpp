@@ -84,6 +84,44 @@ TEST(CutGuide, ATwistedLayoutIsCutAgainGuidedAndGrowsLess) {
     EXPECT_GT(automatic.cut_stats.guide_restart_faces, 0);
     EXPECT_LT(automatic.cut_stats.guide_restart_faces, surface.cut.mesh.num_faces());
     EXPECT_LT(automatic.cut.mesh.num_faces(), surface.cut.mesh.num_faces() / 2);
+    // The guided cut ran on the input subdivided once (CutOptions::guide_subdivisions), where the
+    // guide folds less: against the guide on the input itself, fewer faces and a map far less
+    // distorted (measured: 91,074 against 133,473 faces, symmetric Dirichlet 2,918 against
+    // 528,876 after the relaxation; the surface cut's 16.6 million).
+    EXPECT_EQ(automatic.cut_stats.guide_subdivisions, 1);
+    MapOptions coarse_opt;
+    coarse_opt.cut.guide_subdivisions = 0;
+    const MapResult coarse = certified_paper_map(mesh, features, coarse_opt, "twist 8, guide on the input itself");
+    EXPECT_EQ(coarse.cut_stats.guide_subdivisions, 0);
+    const double sd_fine = automatic.certificate.distortion.symmetric_dirichlet;
+    const double sd_coarse = coarse.certificate.distortion.symmetric_dirichlet;
+    const double sd_surface = surface.certificate.distortion.symmetric_dirichlet;
+    std::printf("symmetric Dirichlet after the relaxation: surface paths %.0f, guide on the input %.0f (%d faces), "
+                "on the input subdivided once %.0f (%d faces)\n",
+                sd_surface, sd_coarse, coarse.cut.mesh.num_faces(), sd_fine, automatic.cut.mesh.num_faces());
+    EXPECT_LT(automatic.cut.mesh.num_faces(), coarse.cut.mesh.num_faces());
+    EXPECT_LT(sd_fine, sd_coarse / 10);
+    EXPECT_LT(sd_coarse, sd_surface);
+    // Every vertex still names the input face it lies in: its barycentric coordinates there
+    // (non-negative to 1e-9) give back its position (to 1e-9 of the mesh's size), the
+    // subdivision's midpoints and the paths' vertices alike.
+    const MapResult& r = automatic;
+    ASSERT_EQ(r.cut.vertex_face.size(), r.cut.mesh.positions.size());
+    double size = 0;
+    for (const Vec3& p : mesh.positions) size = std::max(size, p.norm());
+    int checked = 0;
+    for (std::size_t v = 0; v < r.cut.mesh.positions.size(); ++v) {
+        const int f = r.cut.vertex_face[v];
+        ASSERT_GE(f, 0);
+        ASSERT_LT(f, mesh.num_faces());
+        const Tri& t = mesh.faces[f];
+        const Vec3& b = r.cut.vertex_bary[v];
+        EXPECT_GE(b.minCoeff(), -1e-9) << "vertex " << v;
+        const Vec3 p = b[0] * mesh.positions[t[0]] + b[1] * mesh.positions[t[1]] + b[2] * mesh.positions[t[2]];
+        EXPECT_LE((p - r.cut.mesh.positions[v]).norm(), 1e-9 * size) << "vertex " << v;
+        ++checked;
+    }
+    EXPECT_GT(checked, 4 * mesh.num_vertices());
 }
 
 }  // namespace

@@ -169,6 +169,9 @@ void print_map_summary(const MapArgs& a, const MapRun& run, std::ostream& os) {
            << (r.cut_stats.guide_restart_faces > 0
                    ? " (shortest paths on the surface had grown the mesh to " + std::to_string(r.cut_stats.guide_restart_faces) + " faces)"
                    : std::string())
+           << (r.cut_stats.guide_subdivisions > 0
+                   ? ", on the input subdivided " + std::to_string(r.cut_stats.guide_subdivisions) + "x (1-to-4)"
+                   : std::string())
            << "\n";
     os << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate
        << " degenerate, feature error " << c.feature_max_error << ", border " << (c.border_simple ? "simple" : "crossing")

@@ -16,6 +16,7 @@
 #include "ctmap/cut/straighten_path.h"
 #include "ctmap/cut/work_mesh.h"
 #include "ctmap/errors.h"
+#include "ctmap/subdivide.h"
 
 namespace ctmap {
 namespace {
@@ -361,6 +362,32 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
     return out;
 }
 
+/// Re-expresses a cut of `input` subdivided `levels` times in terms of `input`: each vertex's
+/// face becomes the input face its subdivided face lies in, with barycentric coordinates there;
+/// the subdivision's midpoints count as inserted vertices (on input edges or inside faces).
+void to_input_faces(const TriMesh& input, int levels, CutMesh& out, CutStats& stats) {
+    const int shift = 2 * levels;
+    stats.vertices_on_input_edges = stats.vertices_inside_faces = 0;
+    for (std::size_t v = 0; v < out.mesh.positions.size(); ++v) {
+        const int f = out.vertex_face[v] >> shift;
+        const Tri& t = input.faces[f];
+        const Vec3 &A = input.positions[t[0]], &B = input.positions[t[1]], &C = input.positions[t[2]];
+        const Vec3 n = (B - A).cross(C - A);
+        const Vec3& P = out.mesh.positions[v];
+        const double l1 = (P - A).cross(C - A).dot(n) / n.squaredNorm();
+        const double l2 = (B - A).cross(P - A).dot(n) / n.squaredNorm();
+        out.vertex_face[v] = f;
+        out.vertex_bary[v] = Vec3(1 - l1 - l2, l1, l2);
+        if (int(v) < input.num_vertices()) continue;
+        // On an input edge when a coordinate is zero to rounding (midpoints and path crossings
+        // of input edges lie on them exactly in exact arithmetic).
+        const double lo = std::min({1 - l1 - l2, l1, l2});
+        ++(std::abs(lo) < 1e-9 ? stats.vertices_on_input_edges : stats.vertices_inside_faces);
+    }
+    out.num_input_vertices = input.num_vertices();
+    stats.inserted_vertices = int(out.mesh.positions.size()) - input.num_vertices();
+}
+
 }  // namespace
 
 CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, const FeatureTriangulation& ft,
@@ -377,7 +404,20 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
             stats.guide_restart_faces = restart;
         }
     }
-    if (!out) out = cut_with(input, feature_vertex, ft, opt, opt.guide != CutOptions::Guide::off, unlimited, stats);
+    if (!out) {
+        const bool guided = opt.guide != CutOptions::Guide::off;
+        const int levels = guided ? opt.guide_subdivisions : 0;
+        if (levels == 0) {
+            out = cut_with(input, feature_vertex, ft, opt, guided, unlimited, stats);
+        } else {
+            // The same surface with smaller faces: the input's vertices keep their ids, so the
+            // features do; each input face f becomes faces f * 4^levels ... (f + 1) * 4^levels - 1.
+            const TriMesh fine = subdivide_midpoint(input, levels);
+            out = cut_with(fine, feature_vertex, ft, opt, guided, unlimited, stats);
+            if (out) to_input_faces(input, levels, *out, stats);
+        }
+        stats.guide_subdivisions = levels;
+    }
     if (!out) throw InternalError("cut: the cut gave up with no limit on its growth");
     if (stats_out) *stats_out = stats;
     return std::move(*out);

@@ -80,6 +80,12 @@ struct CutOptions {
     /// to the surface's area.
     double guide_weight = 4;
     double growth_limit = 6;
+    /// A guided cut runs on the input subdivided this many times (1-to-4 at edge midpoints: the
+    /// same surface, subdivide.h) and the guide with it: on a coarse input the guide folds where
+    /// the layout twists (a face too large for the shear across it), and its paths then grow the
+    /// mesh without bound. three_peaks with 400 features twisted by 10: not done in 900 s at 0,
+    /// certified at 1 (BENCHMARKS.md, "Hard layouts").
+    int guide_subdivisions = 1;
     /// Called with a short message as paths are inserted (for progress lines).
     std::function<void(int done, int total)> progress;
 };
@@ -105,6 +111,7 @@ struct CutStats {
     /// when the surface cut was given up for the guided one (0: no restart).
     bool guided = false;
     int guide_restart_faces = 0;
+    int guide_subdivisions = 0;  ///< times the input was subdivided for the guided cut
 };
 
 /// The Steiner point spacing the path search of `cut_mesh` uses on `mesh` (world units):

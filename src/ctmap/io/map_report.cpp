@@ -47,7 +47,10 @@ nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
                    // Paths searched along the guide map (cut/guide_map.h), and the faces the
                    // surface cut had reached when it was given up for that (0: it was not).
                    {"guided_paths", r.cut_stats.guided},
-                   {"surface_cut_given_up_at_faces", r.cut_stats.guide_restart_faces}};
+                   {"surface_cut_given_up_at_faces", r.cut_stats.guide_restart_faces},
+                   // Times the input was subdivided 1-to-4 for the guided cut (its midpoints
+                   // are among the vertices on input edges and inside faces above).
+                   {"guide_subdivisions", r.cut_stats.guide_subdivisions}};
     nlohmann::json added = nlohmann::json::array();
     const AutoBorder& ab = r.auto_border;
     for (std::size_t i = 0; i < ab.vertex.size(); ++i) {
