@@ -5,6 +5,9 @@
 // in and out, the cut's counts, the time and the certificate; a failure prints its message.
 //
 //   hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE]
+//                [--levels L] [--guide-subdivisions K]
+// (--levels: the mesh subdivided 1-to-4 L times before the features are drawn on it; --obj: the
+// map written as OBJ; --guide-subdivisions: CutOptions::guide_subdivisions.)
 //   hard_layouts points MESH N [--seed S] [--refine paper|isometric]
 // (--refine paper stops after the paper's relaxation: the cut and its certificate without the
 // optimiser, whose time on a mesh the cut grew to 10^5-10^6 faces is issue 11's subject.)
@@ -32,7 +35,7 @@ using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
     if (argc < 4) {
-        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE] | "
+        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE] [--levels L] [--guide-subdivisions K] | "
                      "hard_layouts points MESH N [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE]\n";
         return 2;
     }
