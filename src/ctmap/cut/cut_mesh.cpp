@@ -136,6 +136,16 @@ std::vector<int> border_features(const TriMesh& mesh, const std::vector<int>& fe
 
 namespace {
 
+/// Barycentric coordinates of P in face f of `mesh`, by areas in the face's plane (P lies in it).
+Vec3 barycentric(const TriMesh& mesh, int f, const Vec3& P) {
+    const Tri& t = mesh.faces[f];
+    const Vec3 &A = mesh.positions[t[0]], &B = mesh.positions[t[1]], &C = mesh.positions[t[2]];
+    const Vec3 n = (B - A).cross(C - A);
+    const double l1 = (P - A).cross(C - A).dot(n) / n.squaredNorm();
+    const double l2 = (B - A).cross(P - A).dot(n) / n.squaredNorm();
+    return Vec3(1 - l1 - l2, l1, l2);
+}
+
 /// The cut with the paths searched on the surface (`guided` false) or with the guide map; gives
 /// up (nothing) when the work mesh gets more than `face_limit` faces.
 std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& feature_vertex,
@@ -347,15 +357,8 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
     for (int v = 0; v < m.num_vertices(); ++v) {
         if (id[v] < 0) continue;
         const int f = m.origin[m.vertex_faces[v][0]];
-        const Tri& t = input.faces[f];
-        const Vec3 &A = input.positions[t[0]], &B = input.positions[t[1]], &C = input.positions[t[2]];
-        // Barycentric coordinates by areas in the face's plane (the vertex lies in it).
-        const Vec3 n = (B - A).cross(C - A);
-        const Vec3& P = m.positions[v];
-        const double l1 = (P - A).cross(C - A).dot(n) / n.squaredNorm();
-        const double l2 = (B - A).cross(P - A).dot(n) / n.squaredNorm();
         out.vertex_face[id[v]] = f;
-        out.vertex_bary[id[v]] = Vec3(1 - l1 - l2, l1, l2);
+        out.vertex_bary[id[v]] = barycentric(input, f, m.positions[v]);
     }
     stats.inserted_vertices = int(out.mesh.positions.size()) - input.num_vertices();
     out.steiner_vertices = stats.steiner_vertices;
@@ -370,18 +373,12 @@ void to_input_faces(const TriMesh& input, int levels, CutMesh& out, CutStats& st
     stats.vertices_on_input_edges = stats.vertices_inside_faces = 0;
     for (std::size_t v = 0; v < out.mesh.positions.size(); ++v) {
         const int f = out.vertex_face[v] >> shift;
-        const Tri& t = input.faces[f];
-        const Vec3 &A = input.positions[t[0]], &B = input.positions[t[1]], &C = input.positions[t[2]];
-        const Vec3 n = (B - A).cross(C - A);
-        const Vec3& P = out.mesh.positions[v];
-        const double l1 = (P - A).cross(C - A).dot(n) / n.squaredNorm();
-        const double l2 = (B - A).cross(P - A).dot(n) / n.squaredNorm();
         out.vertex_face[v] = f;
-        out.vertex_bary[v] = Vec3(1 - l1 - l2, l1, l2);
+        out.vertex_bary[v] = barycentric(input, f, out.mesh.positions[v]);
         if (int(v) < input.num_vertices()) continue;
         // On an input edge when a coordinate is zero to rounding (midpoints and path crossings
         // of input edges lie on them exactly in exact arithmetic).
-        const double lo = std::min({1 - l1 - l2, l1, l2});
+        const double lo = out.vertex_bary[v].minCoeff();
         ++(std::abs(lo) < 1e-9 ? stats.vertices_on_input_edges : stats.vertices_inside_faces);
     }
     out.num_input_vertices = input.num_vertices();

@@ -83,8 +83,9 @@ struct CutOptions {
     /// A guided cut runs on the input subdivided this many times (1-to-4 at edge midpoints: the
     /// same surface, subdivide.h) and the guide with it: on a coarse input the guide folds where
     /// the layout twists (a face too large for the shear across it), and its paths then grow the
-    /// mesh without bound. three_peaks with 400 features twisted by 10: not done in 900 s at 0,
-    /// certified at 1 (BENCHMARKS.md, "Hard layouts").
+    /// mesh further. three_peaks with 400 features twisted by 8: 133,473 faces at 0, 91,074 at 1
+    /// and a map 180 times less distorted (BENCHMARKS.md, "Hard layouts"; twist 10 is not done
+    /// at 1 or 2).
     int guide_subdivisions = 1;
     /// Called with a short message as paths are inserted (for progress lines).
     std::function<void(int done, int total)> progress;
