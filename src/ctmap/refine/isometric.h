@@ -38,9 +38,10 @@ struct IsometricOptions {
     bool check_border = true;
     /// Keep the free border in that rectangle; off (`--border-mode unbounded`), only simple.
     bool keep_in_box = true;
-    /// Reuse the Hessian's factorisation for the next steps while they gain at least half of
-    /// what the first step with it gained (at most 4 reuses): most iterations then cost a solve
-    /// instead of a factorisation. Off: a new Hessian every iteration (plain projected Newton).
+    /// Reuse the Hessian's factorisation for the next steps while they are whole steps that gain
+    /// at least half of what the first step with it gained (at most 4 reuses): such iterations
+    /// cost a solve instead of a factorisation. Off: a new Hessian every iteration (plain
+    /// projected Newton).
     bool reuse_hessian = true;
     bool parallel = true;  ///< per-face work with TBB (the result is the same bit for bit either way)
     /// The factor the mesh is scaled by in the energy (the energy is not scale invariant). 0: the
@@ -63,7 +64,8 @@ struct IsometricStats {
     int iterations = 0;           ///< accepted iterations
     std::vector<double> energy;   ///< energy[0] on entry, energy[i] after iteration i
     bool converged = false;       ///< stopped by the tolerance (or at a point no step can improve)
-    /// "tolerance", "iterations", "no descent step", "border contact" (the free border touches
+    /// "tolerance", "iterations", "no descent step" (neither the Newton step nor the steepest
+    /// descent step lowers the energy), "border contact" (the free border touches
     /// itself and five steps in a row that it held gained less than the tolerance), "stalled" (ten steps in a row
     /// with a new Hessian gained less than 1e-12 of the energy each: a vertex pinned by the barrier), "no free vertex"
     std::string stop;
@@ -71,7 +73,12 @@ struct IsometricStats {
     long halvings = 0;            ///< line-search step halvings in all
     long exact_rejections = 0;    ///< trial steps the floating-point test passed and the exact predicates refused
     long border_rejections = 0;   ///< trial steps the border guard refused
-    long border_holds = 0;        ///< times border vertices at a contact were held for an iteration
+    /// times border vertices at a contact were held (they then stay fixed for five iterations,
+    /// the Newton system solved with them fixed)
+    long border_holds = 0;
+    /// steepest descent steps: tried when a new Hessian's step failed or was cut below 1e-3 by
+    /// the flip-free bound (it then points into a face about to collapse)
+    int steepest_steps = 0;
     int free_vertices = 0;        ///< vertices that move in the plane
     int sliding_vertices = 0;     ///< border vertices that slide along a side (fixed border)
     double scale = 0;             ///< the factor the mesh was scaled by in the energy (IsometricOptions::scale)
