@@ -1,9 +1,6 @@
 #include "ctmap/refine/isometric.h"
 
-#include <Eigen/CholmodSupport>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
-#include <dlfcn.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -18,6 +15,7 @@
 #include "ctmap/refine/border_guard.h"
 #include "ctmap/refine/face_newton.h"
 #include "ctmap/refine/flip_free_step.h"
+#include "ctmap/refine/sparse_cholesky.h"
 
 namespace ctmap {
 namespace {
@@ -54,46 +52,6 @@ void for_faces(int n, bool parallel, F&& f) {
     if (parallel) tbb::parallel_for(0, n, [&](int i) { f(i); });
     else for (int i = 0; i < n; ++i) f(i);
 }
-
-/// CHOLMOD's supernodal factorisation calls BLAS; a threaded OpenBLAS (Debian's
-/// libopenblas0-pthread behind libblas.so.3) would make the result depend on its thread count and
-/// compete with TBB for the cores. One BLAS thread, if the BLAS is OpenBLAS (looked up at run time:
-/// the reference BLAS has no such function).
-void single_threaded_blas() {
-    using SetThreads = void (*)(int);
-    if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
-}
-
-/// Debian's CHOLMOD is built with OpenMP and asks for 4 threads (CHOLMOD_OMP_NUM_THREADS) in its
-/// supernodal numeric factorisation, whatever the machine. Beside TBB's workers on 2 cores that
-/// is oversubscription: on mannequin-devil with 20 features a third of the optimiser's time went
-/// to futex waits and wake-ups in libgomp, and the run took 3x as long as with OMP_THREAD_LIMIT=1
-/// (bit for bit the same map). While the optimiser runs, OpenMP's max-active-levels is 0, which
-/// makes every parallel region run on the calling thread; the caller's setting is put back on
-/// exit. (Looked up at run time: libgomp comes with CHOLMOD, not linked by ctmap itself.)
-class SerialOpenMp {
-public:
-    SerialOpenMp() {
-        get_ = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
-        set_ = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
-        if (get_ && set_) {
-            saved_ = get_();
-            set_(0);
-        }
-    }
-    ~SerialOpenMp() {
-        if (get_ && set_) set_(saved_);
-    }
-    SerialOpenMp(const SerialOpenMp&) = delete;
-    SerialOpenMp& operator=(const SerialOpenMp&) = delete;
-
-private:
-    using Get = int (*)();
-    using Set = void (*)(int);
-    Get get_ = nullptr;
-    Set set_ = nullptr;
-    int saved_ = 0;
-};
 
 }  // namespace
 
@@ -328,26 +286,8 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         for (int c = 0; c < unknowns; ++c)
             diag[c] = int(std::lower_bound(inner + outer[c], inner + outer[c + 1], c) - inner);
     }
-    single_threaded_blas();
-    const SerialOpenMp serial_openmp;
-    // A local optimisation (`movable`) has a small system: Eigen's simplicial Cholesky (AMD
-    // ordering) factorises it faster than CHOLMOD's supernodal one, whose OpenMP team costs more
-    // than the work there (measured on ctmap serve's moves).
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
-    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> small_solver;
-    // Relaxed supernode amalgamation: CHOLMOD merges supernodes of up to 16, 64 and 192 columns
-    // while under 99%, 40% and 20% of the merged block are zeros (its defaults: 4, 16, 48 columns,
-    // 80%, 10%, 5%). Fewer, larger supernodes: each costs an OpenMP region (a futex wake even when
-    // serial, see SerialOpenMp) and a BLAS call, which on these systems cost more than the added
-    // fill. A factorisation on mannequin-devil with 50 features (30,430 unknowns) went from 68 to
-    // 35 ms, on lion-head with 50 (20,316) from 41 to 24 ms (BENCHMARKS.md, "Speed against CGAL's ARAP").
-    {
-        cholmod_common& c = solver.cholmod();
-        c.nrelax[0] = 16, c.nrelax[1] = 64, c.nrelax[2] = 192;
-        c.zrelax[0] = 0.99, c.zrelax[1] = 0.4, c.zrelax[2] = 0.2;
-    }
-    if (local_only) small_solver.analyzePattern(K);
-    else solver.analyzePattern(K);
+    // A local optimisation (`movable`) has a small system: the simplicial factorisation.
+    SparseCholesky solver(K, local_only);
 
     const BorderGuard guard(loop, box_lo, box_hi);
 
@@ -438,10 +378,8 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             for (int v : loop)
                 if (dof[v].n > 0 && pin_until[v] > it)
                     for (int i = 0; i < dof[v].n; ++i) K.valuePtr()[diag[dof[v].first + i]] += 1e8 * trace / unknowns;
-            if (local_only) small_solver.factorize(K);
-            else solver.factorize(K);
             ++stats.factorisations;
-            if ((local_only ? small_solver.info() : solver.info()) != Eigen::Success) {
+            if (!solver.factorize(K)) {
                 stats.stop = "no descent step";
                 break;
             }
@@ -452,7 +390,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             const double curvature = rhs.dot(Kr);
             y = curvature > 0 ? Eigen::VectorXd(rhs.dot(rhs) / curvature * rhs) : Eigen::VectorXd(rhs);
         } else {
-            y = local_only ? Eigen::VectorXd(small_solver.solve(rhs)) : Eigen::VectorXd(solver.solve(rhs));
+            y = solver.solve(rhs);
         }
         // The Newton decrement: the decrease the quadratic model predicts for the whole step. It
         // decides convergence (on a new Hessian only): a step cut short by the flip-free bound or
