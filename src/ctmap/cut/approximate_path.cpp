@@ -72,7 +72,11 @@ public:
         if (!m_.is_live_edge(e) || m_.is_border_edge(e) || c_.path_edges->count(m_.edges[e])) return 0;
         const int a = key_lo(m_.edges[e]), b = key_hi(m_.edges[e]);
         const int n = int(std::min(double(kMaxPoints), (m_.positions[a] - m_.positions[b]).norm() / spacing_));
-        return n == 0 && blocked(a) && blocked(b) ? 1 : n;  // keep a way between blocked ends
+        // Keep a way between blocked ends, the path's own ends counted as blocked: a path that
+        // goes round and passes its own end again must cross the short edges from that end to
+        // the paths beside it (with no point there, three_peaks twist 8 stopped with "no valid
+        // path" in a region the path's end sector does reach).
+        return n == 0 && (*c_.blocked)[a] && (*c_.blocked)[b] ? 1 : n;
     }
     static Node node(int e, int j) { return kSteiner | (Node(e) << 20) | Node(j); }
     static bool is_vertex(Node x) { return !(x & kSteiner); }

@@ -65,8 +65,9 @@ struct FoundPath {
 /// A short path in the Steiner graph from `c.source` to `c.target` that avoids blocked vertices
 /// and path edges (Steiner points are never put on path edges, so it cannot cross a path), leaves
 /// the source through its sector and enters the target through its sector. Points on a free edge
-/// stay usable even when both its ends are blocked (an edge with no Steiner point then gets one),
-/// which lets a path squeeze between two others. Ends closer than `opt.corridor_min_distance`
+/// stay usable even when both its ends are blocked or are the path's own ends (an edge with no
+/// Steiner point then gets one), which lets a path squeeze between two others and pass by its own
+/// ends (PathSearch.APathMayPassByItsOwnEnd). Ends closer than `opt.corridor_min_distance`
 /// spacings, or `opt.corridor_rings == 0`: the shortest such path of the whole graph (A*).
 /// Otherwise the shortest inside the corridor of a coarse path (`FoundPath::search` says which
 /// search found it), which is at most a little longer (GeodesicAccuracy and
