@@ -14,6 +14,7 @@
 #include "ctmap/embed/mean_value_embedding.h"
 #include "ctmap/errors.h"
 #include "ctmap/face_jacobian.h"
+#include "ctmap/refine/segment_grid.h"
 
 namespace ctmap {
 namespace {
@@ -81,92 +82,6 @@ struct Rings {
     }
     int begin(int v) const { return offset[v]; }
     int end(int v) const { return offset[v + 1]; }
-};
-
-/// Uniform grid of the UV border edges, updated as border vertices move, so that checking a
-/// moved vertex's two border edges costs O(1) on average instead of O(border). An edge whose box
-/// covers too many cells (it grew long, or the map is far from where the grid was sized) goes to
-/// a list that every query scans; a query that large scans every edge. So the grid stays correct
-/// and bounded whatever the map does.
-class SegmentGrid {
-public:
-    SegmentGrid(double cell, const std::vector<Vec2>& uv, const std::vector<std::array<int, 2>>& edges)
-        : cell_(cell), uv_(uv), edges_(edges), stamp_(edges.size(), 0), big_flag_(edges.size(), 0) {
-        for (int e = 0; e < int(edges.size()); ++e) insert(e);
-    }
-    void insert(int e) {
-        const Vec2 &a = uv_[edges_[e][0]], &b = uv_[edges_[e][1]];
-        if (!small(a, b)) {
-            big_flag_[e] = 1;
-            big_.push_back(e);
-            return;
-        }
-        big_flag_[e] = 0;
-        for_cells(a, b, [&](std::uint64_t key) { cells_[key].push_back(e); });
-    }
-    /// \pre the edge's ends are where they were when it was inserted.
-    void remove(int e) {
-        if (big_flag_[e]) {
-            big_.erase(std::find(big_.begin(), big_.end(), e));
-            return;
-        }
-        for_cells(uv_[edges_[e][0]], uv_[edges_[e][1]], [&](std::uint64_t key) {
-            auto& v = cells_[key];
-            v.erase(std::find(v.begin(), v.end(), e));
-        });
-    }
-    /// Calls f(edge) once for every edge that may meet the box of [a, b] (and maybe others).
-    template <class F>
-    void query(const Vec2& a, const Vec2& b, F&& f) {
-        if (!small(a, b)) {
-            for (int e = 0; e < int(edges_.size()); ++e) f(e);
-            return;
-        }
-        ++tick_;
-        auto visit = [&](int e) {
-            if (stamp_[e] != tick_) {
-                stamp_[e] = tick_;
-                f(e);
-            }
-        };
-        for (int e : big_) visit(e);
-        for_cells(a, b, [&](std::uint64_t key) {
-            auto it = cells_.find(key);
-            if (it == cells_.end()) return;
-            for (int e : it->second) visit(e);
-        });
-    }
-
-private:
-    static constexpr double kMaxCells = 64;
-    static constexpr double kMaxIndex = 1e9;  // cell indices must fit in 32 bits
-
-    bool small(const Vec2& a, const Vec2& b) const {
-        const double x0 = std::min(a.x(), b.x()) / cell_, x1 = std::max(a.x(), b.x()) / cell_;
-        const double y0 = std::min(a.y(), b.y()) / cell_, y1 = std::max(a.y(), b.y()) / cell_;
-        if (!(std::abs(x0) < kMaxIndex && std::abs(x1) < kMaxIndex && std::abs(y0) < kMaxIndex &&
-              std::abs(y1) < kMaxIndex))
-            return false;  // also false for NaN
-        return (std::floor(x1) - std::floor(x0) + 1) * (std::floor(y1) - std::floor(y0) + 1) <= kMaxCells;
-    }
-    template <class F>
-    void for_cells(const Vec2& a, const Vec2& b, F&& f) {
-        const std::int64_t x0 = cell_index(std::min(a.x(), b.x())), x1 = cell_index(std::max(a.x(), b.x()));
-        const std::int64_t y0 = cell_index(std::min(a.y(), b.y())), y1 = cell_index(std::max(a.y(), b.y()));
-        for (std::int64_t x = x0; x <= x1; ++x)
-            for (std::int64_t y = y0; y <= y1; ++y)
-                f((std::uint64_t(std::uint32_t(std::int32_t(x))) << 32) | std::uint32_t(std::int32_t(y)));
-    }
-    std::int64_t cell_index(double c) const { return std::int64_t(std::floor(c / cell_)); }
-
-    double cell_;
-    const std::vector<Vec2>& uv_;
-    const std::vector<std::array<int, 2>>& edges_;
-    std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-    std::vector<unsigned> stamp_;
-    std::vector<char> big_flag_;
-    std::vector<int> big_;
-    unsigned tick_ = 0;
 };
 
 int sign_of(double x) { return (x > 0) - (x < 0); }
