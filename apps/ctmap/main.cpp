@@ -199,7 +199,11 @@ int cmd_demo(const std::string& out_dir) {
                          std::to_string(r.certificate.distortion.symmetric_dirichlet) + " after refinement",
                      "total " + std::to_string(int(r.timings_ms.total)) + " ms"};
     OutputSet pictures;
-    const auto written = write_gallery({args.output, args.image, args.features}, out_dir, "nefertiti", gallery, pictures);
+    RenderFiles files;
+    files.map = args.output;
+    files.image = args.image;
+    files.features = args.features;
+    const auto written = write_gallery(files, out_dir, "nefertiti", gallery, pictures);
     pictures.commit_all();
     std::cout << "demo: " << written.size() << " pictures and index.html in " << out_dir
               << " (open index.html in a browser)\n";
