@@ -5,7 +5,7 @@
 // in and out, the cut's counts, the time and the certificate; a failure prints its message.
 //
 //   hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE]
-//                [--levels L] [--guide-subdivisions K]
+//                [--levels L] [--guide-subdivisions K] [--order nearest|shortest-path]
 // (--levels: the mesh subdivided 1-to-4 L times before the features are drawn on it; --obj: the
 // map written as OBJ; --guide-subdivisions: CutOptions::guide_subdivisions.)
 //   hard_layouts points MESH N [--seed S] [--refine paper|isometric]
@@ -35,7 +35,7 @@ using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
     if (argc < 4) {
-        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE] [--levels L] [--guide-subdivisions K] | "
+        std::cerr << "usage: hard_layouts twist MESH N TWIST [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE] [--levels L] [--guide-subdivisions K] [--order nearest|shortest-path] | "
                      "hard_layouts points MESH N [--seed S] [--refine paper|isometric] [--guide off|on|automatic] [--obj FILE]\n";
         return 2;
     }
@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
     std::string refine = "isometric", guide = "automatic", obj;
     int levels = 0;  // --levels L: the input subdivided 1-to-4 L times first
     int guide_subdivisions = CutOptions().guide_subdivisions;
+    std::string order = "nearest";
     for (int i = 4; i + 1 < argc; ++i) {
         if (std::string(argv[i]) == "--guide") guide = argv[i + 1];
         if (std::string(argv[i]) == "--seed") seed = unsigned(std::stoul(argv[i + 1]));
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
         if (std::string(argv[i]) == "--obj") obj = argv[i + 1];
         if (std::string(argv[i]) == "--levels") levels = std::stoi(argv[i + 1]);
         if (std::string(argv[i]) == "--guide-subdivisions") guide_subdivisions = std::stoi(argv[i + 1]);
+        if (std::string(argv[i]) == "--order") order = argv[i + 1];
     }
     const TriMesh mesh = subdivide_midpoint(read_mesh(mesh_file), levels);
     const std::vector<Vec2> tutte = test::tutte_map(mesh);
@@ -70,6 +72,7 @@ int main(int argc, char** argv) {
         if (guide == "off") options.cut.guide = CutOptions::Guide::off;
         if (guide == "on") options.cut.guide = CutOptions::Guide::on;
         options.cut.guide_subdivisions = guide_subdivisions;
+        if (order == "shortest-path") options.cut.order = CutOptions::Order::shortest_path;
         // Progress on stderr (a line per 500 paths): a long run shows where it is.
         options.progress = [t0](const std::string& stage, int done, int total) {
             if (done % 500 == 0 || done == total)
@@ -86,6 +89,8 @@ int main(int argc, char** argv) {
         row["path_length"] = r.cut_stats.path_length;
         row["guided"] = r.cut_stats.guided;
         row["guide_restart_faces"] = r.cut_stats.guide_restart_faces;
+        row["shortest_path_first"] = r.cut_stats.shortest_path_first;
+        row["shortest_path_restart_faces"] = r.cut_stats.shortest_path_restart_faces;
         row["guide_subdivisions"] = r.cut_stats.guide_subdivisions;
         row["valid"] = r.certificate.valid;
         row["symmetric_dirichlet"] = r.certificate.distortion.symmetric_dirichlet;

@@ -163,16 +163,21 @@ void print_map_summary(const MapArgs& a, const MapRun& run, std::ostream& os) {
     os << "  " << r.triangulation.triangles.size() << " patches, " << r.cut_stats.paths << " paths, "
        << r.cut.mesh.num_vertices() - r.cut.num_input_vertices + r.point_features << " vertices inserted ("
        << r.cut_stats.steiner_vertices << " by the fallback), " << r.cut.mesh.num_faces() << " faces\n";
-    if (r.cut_stats.guided)
-        os << "  note: the image twists the features against the surface: the paths were searched again along the "
-              "features' interpolated map"
-           << (r.cut_stats.guide_restart_faces > 0
-                   ? " (shortest paths on the surface had grown the mesh to " + std::to_string(r.cut_stats.guide_restart_faces) + " faces)"
-                   : std::string())
-           << (r.cut_stats.guide_subdivisions > 0
-                   ? ", on the input subdivided " + std::to_string(r.cut_stats.guide_subdivisions) + "x (1-to-4)"
-                   : std::string())
-           << "\n";
+    if (r.cut_stats.guided || r.cut_stats.shortest_path_first) {
+        const CutStats& cs = r.cut_stats;
+        os << "  note: the image twists the features against the surface";
+        if (cs.guide_restart_faces > 0) os << "; the paper's cut had grown the mesh to " << cs.guide_restart_faces << " faces";
+        if (cs.shortest_path_restart_faces > 0)
+            os << ", shortest paths first to " << cs.shortest_path_restart_faces << " faces";
+        os << "; the paths were ";
+        if (cs.shortest_path_first) os << "inserted shortest first in the mesh as it stood";
+        if (cs.shortest_path_first && cs.guided) os << " and ";
+        if (cs.guided)
+            os << "searched along the features' interpolated map"
+               << (cs.guide_subdivisions > 0 ? " on the input subdivided " + std::to_string(cs.guide_subdivisions) + "x (1-to-4)"
+                                             : std::string());
+        os << "\n";
+    }
     os << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate
        << " degenerate, feature error " << c.feature_max_error << ", border " << (c.border_simple ? "simple" : "crossing")
        << ")\n";

@@ -6,6 +6,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <queue>
 #include <set>
 
 #include "ctmap/border_loop.h"
@@ -13,6 +14,7 @@
 #include "ctmap/cut/exact_geodesic.h"
 #include "ctmap/cut/guide_map.h"
 #include "ctmap/cut/insert_path.h"
+#include "ctmap/cut/insertion_order.h"
 #include "ctmap/cut/straighten_path.h"
 #include "ctmap/cut/work_mesh.h"
 #include "ctmap/errors.h"
@@ -149,7 +151,7 @@ Vec3 barycentric(const TriMesh& mesh, int f, const Vec3& P) {
 /// The cut with the paths searched on the surface (`guided` false) or with the guide map; gives
 /// up (nothing) when the work mesh gets more than `face_limit` faces.
 std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& feature_vertex,
-                                const FeatureTriangulation& ft, const CutOptions& opt, bool guided,
+                                const FeatureTriangulation& ft, const CutOptions& opt, CutOptions::Order order, bool guided,
                                 std::size_t face_limit, CutStats& stats) {
     Network net(input, feature_vertex, ft);
     const int nfeat = int(feature_vertex.size());
@@ -180,46 +182,24 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
         }
     }
 
-    // Insertion order: a spanning tree grown from the border (Prim, by 3D distance), then the
-    // closing edges shortest first. While the tree grows no region is split, and afterwards every
-    // feature of a region lies on its boundary, so a path that respects the sectors at its ends
-    // separates exactly the right features (condition 3 holds by construction).
     auto dist3 = [&](int a, int b) { return (input.positions[feature_vertex[a]] - input.positions[feature_vertex[b]]).norm(); };
-    std::vector<std::array<int, 2>> order;
-    std::vector<char> in_tree(nfeat, 0);
-    for (int b : ft.border) in_tree[b] = 1;
-    std::set<std::array<int, 2>> pending;
-    for (std::size_t e = 0; e < ft.edges.size(); ++e)
-        if (!ft.edge_on_border[e]) pending.insert(ft.edges[e]);
-    while (true) {
-        double best = std::numeric_limits<double>::infinity();
-        std::array<int, 2> pick{-1, -1};
-        for (const auto& e : pending)
-            if (in_tree[e[0]] != in_tree[e[1]] && dist3(e[0], e[1]) < best) {
-                best = dist3(e[0], e[1]);
-                pick = in_tree[e[0]] ? e : std::array<int, 2>{e[1], e[0]};
-            }
-        if (pick[0] < 0) break;
-        order.push_back(pick);
-        in_tree[pick[1]] = 1;
-        pending.erase({std::min(pick[0], pick[1]), std::max(pick[0], pick[1])});
-    }
-    if (std::count(in_tree.begin(), in_tree.end(), 0))
-        throw InternalError("cut: the feature triangulation does not connect every feature to the border");
-    std::vector<std::array<int, 2>> closing(pending.begin(), pending.end());
-    std::stable_sort(closing.begin(), closing.end(),
-                     [&](const auto& a, const auto& b) { return dist3(a[0], a[1]) < dist3(b[0], b[1]); });
-    order.insert(order.end(), closing.begin(), closing.end());
+    const bool shortest_path_first = order == CutOptions::Order::shortest_path && !opt.exact_geodesics;
+    stats.shortest_path_first = shortest_path_first;
+    const std::vector<std::array<int, 2>> nearest =
+        shortest_path_first ? std::vector<std::array<int, 2>>() : nearest_first_order(ft, dist3);
 
     PathSearchOptions search;
     search.spacing = steiner_spacing(input, opt);
     search.corridor_rings = opt.corridor_rings;
     search.corridor_min_distance = opt.corridor_min_distance;
-    const int total = int(order.size());
-    for (int i = 0; i < total; ++i) {
-        const auto [u, w] = order[i];
+    int total = 0;
+    for (std::size_t e = 0; e < ft.edges.size(); ++e) total += !ft.edge_on_border[e];
+
+    // The path from u to w in the network as it stands, refining around its ends up to
+    // `max_refinements` times when none is found (each refinement changes the mesh).
+    auto find = [&](int u, int w, int max_refinements) {
         std::optional<FoundPath> found;
-        for (int attempt = 0; attempt <= opt.max_refinements; ++attempt) {
+        for (int attempt = 0;; ++attempt) {
             PathConstraints c;
             c.source = feature_vertex[u];
             c.target = feature_vertex[w];
@@ -248,20 +228,20 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
                 s.spacing = std::max(search.spacing / 64, std::min(search.spacing, opt.reach_spacing_factor * dist3(u, w)));
             s.spacing /= double(1 << std::min(attempt, 4));
             found = find_path(net.mesh, c, s);
-            if (found) {
-                if (found->search == FoundPath::Search::corridor) ++stats.corridor_paths;
-                if (found->search == FoundPath::Search::whole_graph_after_corridor) ++stats.corridor_misses;
-                break;
-            }
+            if (found || attempt >= max_refinements) break;
             if (attempt == 0) ++stats.fallback_fired;
             const int added = net.refine_sector(c.source_sector) + net.refine_sector(net.sector(w, u));
             stats.steiner_vertices += added;
         }
-        if (!found)
-            throw InternalError("cut: no valid path between features " + std::to_string(u) + " and " +
-                                std::to_string(w) + " after refinement");
+        return found;
+    };
+    // Inserts the path `found` from u to w; false when the mesh outgrew the face limit.
+    int inserted = 0;
+    auto insert = [&](int u, int w, const FoundPath& found) {
+        if (found.search == FoundPath::Search::corridor) ++stats.corridor_paths;
+        if (found.search == FoundPath::Search::whole_graph_after_corridor) ++stats.corridor_misses;
         const int first_new = net.mesh.num_vertices();
-        std::vector<int> chain = insert_path(net.mesh, found->nodes);
+        std::vector<int> chain = insert_path(net.mesh, found.nodes);
         if (opt.straighten) {
             StraightenStats st;
             chain = straighten_path(net.mesh, chain, first_new, net.blocked, net.path_edges, &st);
@@ -273,11 +253,31 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
             stats.path_length += (net.mesh.positions[chain[k + 1]] - net.mesh.positions[chain[k]]).norm();
         net.add_chain(u, w, chain);
         ++stats.paths;
-        if (opt.progress) opt.progress(i + 1, total);
+        ++inserted;
+        if (opt.progress) opt.progress(inserted, total);
         if (net.mesh.faces.size() > face_limit) {
             stats.guide_restart_faces = int(net.mesh.faces.size());
-            return std::nullopt;
+            return false;
         }
+        return true;
+    };
+    auto no_path = [](int u, int w) {
+        return InternalError("cut: no valid path between features " + std::to_string(u) + " and " +
+                             std::to_string(w) + " after refinement");
+    };
+
+    if (!shortest_path_first) {
+        for (const auto& [u, w] : nearest) {
+            const std::optional<FoundPath> found = find(u, w, opt.max_refinements);
+            if (!found) throw no_path(u, w);
+            if (!insert(u, w, *found)) return std::nullopt;
+        }
+    } else {
+        PathNetworkAccess access;
+        access.find = [&](int u, int w, bool refine) { return find(u, w, refine ? opt.max_refinements : 0); };
+        access.insert = insert;
+        access.lower_bound = dist3;
+        if (!insert_shortest_path_first(ft, access)) return std::nullopt;
     }
 
     // Patches: faces joined across non-path edges; each image triangle (a, b, c) owns the region
@@ -392,28 +392,43 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
     CutStats stats;
     std::optional<CutMesh> out;
     const std::size_t unlimited = std::numeric_limits<std::size_t>::max();
-    if (opt.guide == CutOptions::Guide::automatic) {
+    const bool automatic = opt.guide == CutOptions::Guide::automatic;
+    CutOptions::Order order = opt.order;
+    if (automatic) {
+        // The paper's cut first; where the layout twists the features against the surface and
+        // the mesh outgrows the limit, the same surface with the paths shortest first, then (with
+        // a limit three times as large) the guide as well.
         const double limit = opt.growth_limit * (double(input.faces.size()) + 20.0 * double(feature_vertex.size()));
-        out = cut_with(input, feature_vertex, ft, opt, false, std::size_t(std::min(limit, 1e18)), stats);
-        if (!out) {
-            const int restart = stats.guide_restart_faces;
+        auto capped = [](double x) { return std::size_t(std::min(x, 1e18)); };
+        out = cut_with(input, feature_vertex, ft, opt, order, false, capped(limit), stats);
+        const int first_restart = out ? 0 : stats.guide_restart_faces;
+        int second_restart = 0;
+        if (!out && order != CutOptions::Order::shortest_path && !opt.exact_geodesics) {
+            order = CutOptions::Order::shortest_path;
             stats = CutStats();
-            stats.guide_restart_faces = restart;
+            out = cut_with(input, feature_vertex, ft, opt, order, false, capped(3 * limit), stats);
+            if (!out) second_restart = stats.guide_restart_faces;
         }
+        if (!out) stats = CutStats();
+        stats.guide_restart_faces = first_restart;
+        stats.shortest_path_restart_faces = second_restart;
     }
     if (!out) {
         const bool guided = opt.guide != CutOptions::Guide::off;
         const int levels = guided ? opt.guide_subdivisions : 0;
+        const int first_restart = stats.guide_restart_faces, second_restart = stats.shortest_path_restart_faces;
         if (levels == 0) {
-            out = cut_with(input, feature_vertex, ft, opt, guided, unlimited, stats);
+            out = cut_with(input, feature_vertex, ft, opt, order, guided, unlimited, stats);
         } else {
             // The same surface with smaller faces: the input's vertices keep their ids, so the
             // features do; each input face f becomes faces f * 4^levels ... (f + 1) * 4^levels - 1.
             const TriMesh fine = subdivide_midpoint(input, levels);
-            out = cut_with(fine, feature_vertex, ft, opt, guided, unlimited, stats);
+            out = cut_with(fine, feature_vertex, ft, opt, order, guided, unlimited, stats);
             if (out) to_input_faces(input, levels, *out, stats);
         }
         stats.guide_subdivisions = levels;
+        stats.guide_restart_faces = first_restart;
+        stats.shortest_path_restart_faces = second_restart;
     }
     if (!out) throw InternalError("cut: the cut gave up with no limit on its growth");
     if (stats_out) *stats_out = stats;

@@ -63,17 +63,27 @@ struct CutOptions {
     /// which it is used.
     int corridor_rings = PathSearchOptions{}.corridor_rings;
     double corridor_min_distance = PathSearchOptions{}.corridor_min_distance;
+    /// Insertion order. `nearest` (the paper's): a spanning tree grown from the border by 3D
+    /// distance (Prim), then the closing edges shortest first. `shortest_path`: the same two stages,
+    /// but each step inserts the edge whose path, searched in the network as it stands, is the
+    /// shortest (lazily: a path's length only grows as others are inserted, so a candidate searched
+    /// since the last insertion that is still the shortest is taken): a path that would wind round
+    /// others is put off until it is needed, or left to the closing stage. Not with exact geodesics.
+    enum class Order { nearest, shortest_path };
+    Order order = Order::nearest;
     /// How many times the fallback may refine around a path's ends before giving up.
     int max_refinements = 8;
     /// Straighten each inserted path inside every input face it crosses (straighten_path.h):
     /// bounds the growth of the mesh where paths run side by side.
     bool straighten = true;
     /// Paths short on the surface only (the paper), short in the guide map as well
-    /// (guide_map.h), or (automatic) on the surface first and again guided from scratch when the
-    /// work mesh outgrows `growth_limit` times (input faces + 20 per feature): dense layouts need
-    /// about 20 faces per feature (10,034 points on nefertiti: 201,712 faces). Twisted layouts (image
-    /// neighbours in other directions than on the surface) make surface paths wind ever longer
-    /// around the earlier ones: the guide takes them near their straight image edges instead.
+    /// (guide_map.h), or automatic: on the surface in `order` first; when the work mesh outgrows
+    /// `growth_limit` times (input faces + 20 per feature), again from scratch on the surface with
+    /// the paths shortest first; past three times that limit, guided (shortest first). Dense
+    /// layouts need about 20 faces per feature (10,034 points on nefertiti: 201,712 faces).
+    /// Twisted layouts (image neighbours in other directions than on the surface) make paths
+    /// inserted in the paper's order wind ever longer around the earlier ones; shortest first
+    /// puts those off (three_peaks, 400 features, twist 8: 45,189 faces; twist 10: 87,743).
     enum class Guide { off, on, automatic };
     Guide guide = Guide::automatic;
     /// A guided move costs its surface length plus this times its guide length, the guide scaled
@@ -83,9 +93,8 @@ struct CutOptions {
     /// A guided cut runs on the input subdivided this many times (1-to-4 at edge midpoints: the
     /// same surface, subdivide.h) and the guide with it: on a coarse input the guide folds where
     /// the layout twists (a face too large for the shear across it), and its paths then grow the
-    /// mesh further. three_peaks with 400 features twisted by 8: 133,473 faces at 0, 91,074 at 1
-    /// and a map 180 times less distorted (BENCHMARKS.md, "Hard layouts"; twist 10 is not done
-    /// at 1 or 2).
+    /// mesh further. three_peaks with 400 features twisted by 8, paper's order: 133,473 faces at
+    /// 0, 91,074 at 1 and a map 180 times less distorted (BENCHMARKS.md, "Hard layouts").
     int guide_subdivisions = 1;
     /// Called with a short message as paths are inserted (for progress lines).
     std::function<void(int done, int total)> progress;
@@ -108,10 +117,14 @@ struct CutStats {
     /// avoids), or inside an input face (Steiner vertices, and path vertices straightening kept).
     int vertices_on_input_edges = 0;
     int vertices_inside_faces = 0;
-    /// The paths were searched with the guide map; `guide_restart_faces`: the work mesh's faces
-    /// when the surface cut was given up for the guided one (0: no restart).
+    /// The paths were searched with the guide map; inserted shortest first (CutOptions::Order);
+    /// `guide_restart_faces`: the work mesh's faces when the paper's cut was given up (automatic
+    /// mode: for the shortest-first one; 0: it was not); `shortest_path_restart_faces`: the same
+    /// for the shortest-first cut on the surface, given up for the guided one.
     bool guided = false;
+    bool shortest_path_first = false;
     int guide_restart_faces = 0;
+    int shortest_path_restart_faces = 0;
     int guide_subdivisions = 0;  ///< times the input was subdivided for the guided cut
 };
 

@@ -44,10 +44,14 @@ nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
                    {"vertices_inside_input_faces", r.cut_stats.vertices_inside_faces},
                    {"path_vertices_straightened_away", r.cut_stats.straightened_vertices},
                    {"path_length", r.cut_stats.path_length},
-                   // Paths searched along the guide map (cut/guide_map.h), and the faces the
-                   // surface cut had reached when it was given up for that (0: it was not).
+                   // Paths searched along the guide map (cut/guide_map.h); inserted shortest
+                   // first (cut/insertion_order.h); the faces the paper's cut had reached when
+                   // it was given up for those (0: it was not); the faces the shortest-first cut
+                   // on the surface had reached when it was given up for the guided one.
                    {"guided_paths", r.cut_stats.guided},
+                   {"shortest_paths_first", r.cut_stats.shortest_path_first},
                    {"surface_cut_given_up_at_faces", r.cut_stats.guide_restart_faces},
+                   {"shortest_first_cut_given_up_at_faces", r.cut_stats.shortest_path_restart_faces},
                    // Times the input was subdivided 1-to-4 for the guided cut (its midpoints
                    // are among the vertices on input edges and inside faces above).
                    {"guide_subdivisions", r.cut_stats.guide_subdivisions}};
