@@ -144,18 +144,24 @@ void main() {
     o_colour = d > 0.72 ? vec4(0.06, 0.06, 0.06, 1.0) : f_colour;
 })";
 
+/// Throws InternalError with OpenGL's log when the shader's or program's `status` is false
+/// (deleting the object first).
+void require_status(GLuint id, GLenum status, void (*get)(GLuint, GLenum, GLint*),
+                    void (*get_log)(GLuint, GLsizei, GLsizei*, GLchar*), void (*remove)(GLuint), const char* what) {
+    GLint ok = 0;
+    get(id, status, &ok);
+    if (ok) return;
+    char log[2048] = {0};
+    get_log(id, sizeof log, nullptr, log);
+    remove(id);
+    throw InternalError(std::string("OpenGL ") + what + " failed: " + log);
+}
+
 GLuint compile(GLenum type, const char* source) {
     const GLuint s = glCreateShader(type);
     glShaderSource(s, 1, &source, nullptr);
     glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {0};
-        glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        glDeleteShader(s);
-        throw InternalError(std::string("OpenGL shader compilation failed: ") + log);
-    }
+    require_status(s, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, glDeleteShader, "shader compilation");
     return s;
 }
 
@@ -168,14 +174,7 @@ GLuint link(const char* vs, const char* gs, const char* fs) {
     glLinkProgram(p);
     for (GLuint s : shaders)
         if (s) glDeleteShader(s);  // flagged; freed with the program
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {0};
-        glGetProgramInfoLog(p, sizeof log, nullptr, log);
-        glDeleteProgram(p);
-        throw InternalError(std::string("OpenGL program link failed: ") + log);
-    }
+    require_status(p, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, glDeleteProgram, "program link");
     return p;
 }
 
