@@ -140,7 +140,7 @@ TEST(CutGuide, TheGuideOnTheSubdividedInputFoldsLess) {
 
 TEST(CutGuide, TwistTenIsCutShortestFirstAndCertified) {
     // The layout that ran past 900 s in the paper's order, guided or not (BENCHMARKS.md, "Hard
-    // layouts"): certified here (certified_paper_map checks the cut and the certificate).
+    // layouts"): certified here (certified_map checks the cut and the certificate).
     const TriMesh mesh = read_mesh(data("meshes/three_peaks.off"));
     const MapResult r = certified_map(mesh, twisted(mesh, 10.0), CutOptions::Guide::automatic, "twist 10, automatic");
     const double limit = CutOptions().growth_limit * (mesh.num_faces() + 20.0 * 400);

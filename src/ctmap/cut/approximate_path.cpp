@@ -76,7 +76,8 @@ public:
         // goes round and passes its own end again must cross the short edges from that end to
         // the paths beside it (with no point there, three_peaks twist 8 stopped with "no valid
         // path" in a region the path's end sector does reach).
-        return n == 0 && (*c_.blocked)[a] && (*c_.blocked)[b] ? 1 : n;
+        auto held = [&](int v) { return (*c_.blocked)[v] || v == c_.source || v == c_.target; };
+        return n == 0 && held(a) && held(b) ? 1 : n;
     }
     static Node node(int e, int j) { return kSteiner | (Node(e) << 20) | Node(j); }
     static bool is_vertex(Node x) { return !(x & kSteiner); }

@@ -6,8 +6,6 @@
 #include <map>
 #include <numeric>
 #include <optional>
-#include <queue>
-#include <set>
 
 #include "ctmap/border_loop.h"
 #include "ctmap/cut/approximate_path.h"
@@ -400,10 +398,13 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
         // a limit three times as large) the guide as well.
         const double limit = opt.growth_limit * (double(input.faces.size()) + 20.0 * double(feature_vertex.size()));
         auto capped = [](double x) { return std::size_t(std::min(x, 1e18)); };
-        out = cut_with(input, feature_vertex, ft, opt, order, false, capped(limit), stats);
-        const int first_restart = out ? 0 : stats.guide_restart_faces;
-        int second_restart = 0;
-        if (!out && order != CutOptions::Order::shortest_path && !opt.exact_geodesics) {
+        // (Asked for shortest first from the start: that cut alone, up to three times the limit.)
+        int first_restart = 0, second_restart = 0;
+        if (order != CutOptions::Order::shortest_path || opt.exact_geodesics) {
+            out = cut_with(input, feature_vertex, ft, opt, order, false, capped(limit), stats);
+            if (!out) first_restart = stats.guide_restart_faces;
+        }
+        if (!out && !opt.exact_geodesics) {
             order = CutOptions::Order::shortest_path;
             stats = CutStats();
             out = cut_with(input, feature_vertex, ft, opt, order, false, capped(3 * limit), stats);

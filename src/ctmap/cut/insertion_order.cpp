@@ -48,7 +48,9 @@ struct Candidate {
     double key;
     int u, w;
     int version;  // the network version `key` was searched at (-1: a lower bound)
-    bool operator>(const Candidate& o) const { return key > o.key; }
+    // Equal keys (two candidates with no path before refinement): the one searched last first,
+    // so that stale ones are not searched again and again.
+    bool operator>(const Candidate& o) const { return key > o.key || (key == o.key && version < o.version); }
 };
 using Queue = std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>>;
 

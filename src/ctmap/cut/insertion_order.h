@@ -35,9 +35,10 @@ struct PathNetworkAccess {
 
 /// Inserts every interior edge, tree first and then the closing edges, each time the edge whose
 /// path, searched in the network as it stands, is the shortest. Lazy: a candidate's key is a lower
-/// bound or a length searched earlier, and lengths only grow as paths are inserted (paths block
-/// and split the regions), so a candidate searched since the last insertion that is still the
-/// smallest is taken. A path that would wind round others is thus put off, or left to the closing
+/// bound or a length searched earlier, and lengths roughly only grow as paths are inserted (paths
+/// block and split the regions; the splits add Steiner points, so not strictly), so a candidate
+/// searched since the last insertion that is still the smallest is taken: a heuristic order,
+/// every path still checked by the search's rules. A path that would wind round others is thus put off, or left to the closing
 /// stage where its region is fixed. About two searches per inserted path besides the one that
 /// finds it. Returns false when `insert` gives up; InternalError when no path exists after
 /// refinement. \pre as nearest_first_order.
