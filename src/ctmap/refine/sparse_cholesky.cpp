@@ -2,7 +2,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
-#include <dlfcn.h>
+#include <dlfcn.h>  // dlsym, dlvsym (_GNU_SOURCE, which g++ defines)
 
 #include "ctmap/errors.h"
 
@@ -18,43 +18,56 @@ void single_threaded_blas() {
     if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
 }
 
-/// Debian's CHOLMOD is built with OpenMP and asks for 4 threads (CHOLMOD_OMP_NUM_THREADS) in its
-/// supernodal numeric factorisation, whatever the machine. Beside TBB's workers on 2 cores that
-/// is oversubscription: on mannequin-devil with 20 features a third of the optimiser's time went
-/// to futex waits and wake-ups in libgomp, and the run took 3x as long as with OMP_THREAD_LIMIT=1
-/// (bit for bit the same map). While the optimiser runs, OpenMP's max-active-levels is 0, which
-/// makes every parallel region run on the calling thread; the caller's setting is put back on
-/// exit. (Looked up at run time: libgomp comes with CHOLMOD, not linked by ctmap itself.)
-class SerialOpenMp {
+/// Set while this thread is inside a CHOLMOD call made by SparseCholesky (see GOMP_parallel below).
+thread_local bool in_cholmod = false;
+
+/// Marks the calling thread as inside CHOLMOD for the guard's lifetime.
+class InCholmod {
 public:
-    SerialOpenMp() {
-        get_ = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
-        set_ = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
-        if (get_ && set_) {
-            saved_ = get_();
-            set_(0);
-        }
-    }
-    ~SerialOpenMp() {
-        if (get_ && set_) set_(saved_);
-    }
-    SerialOpenMp(const SerialOpenMp&) = delete;
-    SerialOpenMp& operator=(const SerialOpenMp&) = delete;
+    InCholmod() : saved_(in_cholmod) { in_cholmod = true; }
+    ~InCholmod() { in_cholmod = saved_; }
+    InCholmod(const InCholmod&) = delete;
+    InCholmod& operator=(const InCholmod&) = delete;
 
 private:
-    using Get = int (*)();
-    using Set = void (*)(int);
-    Get get_ = nullptr;
-    Set set_ = nullptr;
-    int saved_ = 0;
+    bool saved_;
 };
 
 }  // namespace
+}  // namespace ctmap
+
+/// Debian's CHOLMOD is built with OpenMP: its supernodal factorisation enters a parallel region
+/// (GCC's GOMP_parallel) for each supernode, with an `if` clause that makes most of them a team of
+/// one. libgomp ends even such a team with a futex wake: 6,600 system calls per factorisation on
+/// mannequin-devil with 50 features (30,430 unknowns), and beside TBB's workers on 2 cores a third
+/// of the optimiser's time went to the kernel and libgomp. Setting OpenMP's max-active-levels to 0
+/// (which made every region serial) did not remove the wakes. This definition takes the place of
+/// libgomp's for the process (CHOLMOD's reference binds to the program's own definition first):
+/// on a thread inside a SparseCholesky call the region's body runs once on that thread, which is
+/// what a team of one does (CHOLMOD's loops are static, `omp_get_num_threads` is 1 outside a
+/// team), so the factor is the same bit for bit. Every other caller, e.g. OpenMP code of a program
+/// that links ctmap, is passed on to libgomp's own GOMP_parallel unchanged. A fresh Newton
+/// iteration there went from 60 to 36 ms (BENCHMARKS.md, "Speed targets").
+extern "C" __attribute__((visibility("default"))) void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads,
+                                                                    unsigned flags) {
+    if (ctmap::in_cholmod) {
+        fn(data);
+        return;
+    }
+    using Real = void (*)(void (*)(void*), void*, unsigned, unsigned);
+    static const Real real = [] {
+        void* f = dlvsym(RTLD_NEXT, "GOMP_parallel", "GOMP_4.0");
+        return reinterpret_cast<Real>(f ? f : dlsym(RTLD_NEXT, "GOMP_parallel"));
+    }();
+    if (real) real(fn, data, num_threads, flags);
+    else fn(data);  // no libgomp in the process: nobody else can have asked for a team
+}
+
+namespace ctmap {
 
 struct SparseCholesky::Impl {
     explicit Impl(bool small_) : small(small_) { single_threaded_blas(); }
     bool small;
-    const SerialOpenMp serial_openmp;
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> supernodal;
     Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> simplicial;
 };
@@ -71,12 +84,13 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& K, bool small)
     // Relaxed supernode amalgamation: CHOLMOD merges supernodes of up to 16, 64 and 192 columns
     // while under 99%, 40% and 20% of the merged block are zeros (its defaults: 4, 16, 48 columns,
     // 80%, 10%, 5%). Fewer, larger supernodes: each costs an OpenMP region (a futex wake even when
-    // serial, see SerialOpenMp) and a BLAS call, which on these systems cost more than the added
+    // serial, see GOMP_parallel above) and a BLAS call, which on these systems cost more than the added
     // fill. A factorisation on mannequin-devil with 50 features (30,430 unknowns) went from 68 to
     // 35 ms, on lion-head with 50 (20,316) from 41 to 24 ms (BENCHMARKS.md, "Speed against CGAL's ARAP").
     cholmod_common& c = impl_->supernodal.cholmod();
     c.nrelax[0] = 16, c.nrelax[1] = 64, c.nrelax[2] = 192;
     c.zrelax[0] = 0.99, c.zrelax[1] = 0.4, c.zrelax[2] = 0.2;
+    const InCholmod inside;
     impl_->supernodal.analyzePattern(K);
 }
 
@@ -87,12 +101,15 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& K) {
         impl_->simplicial.factorize(K);
         return impl_->simplicial.info() == Eigen::Success;
     }
+    const InCholmod inside;
     impl_->supernodal.factorize(K);
     return impl_->supernodal.info() == Eigen::Success;
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
-    return impl_->small ? Eigen::VectorXd(impl_->simplicial.solve(b)) : Eigen::VectorXd(impl_->supernodal.solve(b));
+    if (impl_->small) return impl_->simplicial.solve(b);
+    const InCholmod inside;
+    return impl_->supernodal.solve(b);
 }
 
 }  // namespace ctmap

@@ -14,9 +14,10 @@ class SparseCholesky {
 public:
     /// Analyses the pattern of K (its lower triangle is read; compressed). `small`: the simplicial
     /// factorisation, faster than CHOLMOD's supernodal one on systems of a few thousand unknowns
-    /// (its OpenMP team costs more than the work there). While the object lives, BLAS (OpenBLAS)
-    /// and OpenMP run on the calling thread only (see the source: CHOLMOD's threads beside TBB's
-    /// workers tripled the optimiser's time); the caller's OpenMP setting is put back after.
+    /// (its OpenMP team costs more than the work there). BLAS (OpenBLAS) is set to one thread, and
+    /// CHOLMOD's OpenMP regions run on the calling thread without libgomp's team (see the source:
+    /// CHOLMOD's threads beside TBB's workers tripled the optimiser's time, and libgomp's team of
+    /// one still cost a system call per supernode); OpenMP elsewhere in the process is untouched.
     /// \pre K is square.
     SparseCholesky(const Eigen::SparseMatrix<double>& K, bool small);
     ~SparseCholesky();
