@@ -120,6 +120,9 @@ int main(int argc, char** argv) {
         last = now;
     };
     IsometricStats st = optimise_isometric(mesh, uv, fixed, o);
+    std::size_t hash = 0;
+    for (const Vec2& p : uv) hash = hash * 1000003u ^ std::hash<double>()(p.x()) ^ (std::hash<double>()(p.y()) << 1);
+    std::fprintf(stderr, "uv hash %zx\n", hash);
     std::fprintf(stderr, "done: %d it, %d fact, %s, %.0f ms, SD/4 %.4f -> %.4f\n", st.iterations, st.factorisations,
                  st.stop.c_str(), ms_since(t0), st.energy_before() / 4, st.energy_after() / 4);
     (void)sweeps;

@@ -90,6 +90,13 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& K, bool small)
     cholmod_common& c = impl_->supernodal.cholmod();
     c.nrelax[0] = 16, c.nrelax[1] = 64, c.nrelax[2] = 192;
     c.zrelax[0] = 0.99, c.zrelax[1] = 0.4, c.zrelax[2] = 0.2;
+    // The fill-reducing ordering: METIS's nested dissection, which on these planar meshes needs a
+    // third fewer flops per factorisation than AMD (mannequin-devil with 50 features: 1.19e8
+    // against 1.77e8, 21 against 25 ms per factorisation, the whole optimiser 13% faster) and
+    // costs more only once, in the analysis. (CHOLMOD's default tries METIS only when AMD's fill
+    // is poor, which on these systems it is not by its measure.)
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_METIS;
     const InCholmod inside;
     impl_->supernodal.analyzePattern(K);
 }
