@@ -1,7 +1,12 @@
-// Experiment harness (issue 11, must-show 4): the relaxed map of a scaling row, cached in /tmp,
-// then the optimiser on it with a per-iteration trace (ms, energy), optionally after local
-// vertex sweeps.
-//   isometric_probe MESH [--levels L] [--features N] [--seed S] [--sweeps K] [--iterations I]
+// Experiment harness for the distortion optimiser (issue 11, must-show 4): the relaxed map of a
+// scaling row (the mesh subdivided `--levels` times, `--features` random feasible features with
+// `--twist`), cached in /tmp, then how its excess energy is spread over the faces, and the
+// optimiser on it with a per-iteration trace (ms, energy) and a hash of the final map (to check
+// that a change keeps the same bits). `--local-rounds K`: first K optimisations restricted to the
+// faces holding `--hot` of the excess energy grown by `--rings`, `--local-iterations` each
+// (measured on x64 in BENCHMARKS "Speed targets").
+//   isometric_probe MESH [--levels L] [--features N] [--twist T] [--seed S] [--iterations I]
+//                   [--local-rounds K --hot F --rings R --local-iterations I]
 #include <tbb/parallel_for.h>
 
 #include <chrono>
@@ -42,14 +47,18 @@ static void rd(std::ifstream& f, std::vector<T>& v) {
 
 int main(int argc, char** argv) {
     std::string path = argv[1];
-    int levels = 0, features = 50, seed = 1, sweeps = 0, iterations = 1000;
+    int levels = 0, features = 50, seed = 1, rounds = 0, iterations = 1000, rings = 3, local_iterations = 30;
+    double hot = 0;
     double twist = 1.0;
     for (int i = 2; i + 1 < argc; i += 2) {
         std::string a = argv[i];
         if (a == "--levels") levels = std::stoi(argv[i + 1]);
         if (a == "--features") features = std::stoi(argv[i + 1]);
         if (a == "--seed") seed = std::stoi(argv[i + 1]);
-        if (a == "--sweeps") sweeps = std::stoi(argv[i + 1]);
+        if (a == "--local-rounds") rounds = std::stoi(argv[i + 1]);
+        if (a == "--hot") hot = std::stod(argv[i + 1]);
+        if (a == "--rings") rings = std::stoi(argv[i + 1]);
+        if (a == "--local-iterations") local_iterations = std::stoi(argv[i + 1]);
         if (a == "--iterations") iterations = std::stoi(argv[i + 1]);
         if (a == "--twist") twist = std::stod(argv[i + 1]);
     }
@@ -111,7 +120,52 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "\n");
     }
     auto t0 = Clock::now();
+    double scale = 0;
+    for (int round = 0; round < rounds; ++round) {
+        // hot faces: the fewest holding `hot` of the excess energy
+        double a3 = 0, a2 = 0;
+        for (auto& t : mesh.faces) {
+            a3 += face_frame(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]).area;
+            Vec2 q1 = uv[t[1]] - uv[t[0]], q2 = uv[t[2]] - uv[t[0]];
+            a2 += 0.5 * std::abs(q1.x() * q2.y() - q1.y() * q2.x());
+        }
+        if (scale == 0) scale = std::sqrt(a2 / a3);
+        const int sig = orientation_2d(uv[mesh.faces[0][0]], uv[mesh.faces[0][1]], uv[mesh.faces[0][2]]);
+        std::vector<std::pair<double, int>> ex;
+        double tot = 0;
+        for (int f = 0; f < mesh.num_faces(); ++f) {
+            auto& t = mesh.faces[f];
+            FaceFrame F = face_frame(scale * mesh.positions[t[0]], scale * mesh.positions[t[1]], scale * mesh.positions[t[2]], sig < 0);
+            double e = F.area > 0 ? F.area * (symmetric_dirichlet_density(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]])) - 4) : 0;
+            ex.push_back({e, f}), tot += e;
+        }
+        std::sort(ex.rbegin(), ex.rend());
+        std::vector<char> in(mesh.num_vertices(), 0);
+        double s = 0;
+        std::size_t nhot = 0;
+        for (auto& [e, f] : ex) {
+            if (s >= hot * tot) break;
+            s += e, ++nhot;
+            for (int v : mesh.faces[f]) in[v] = 1;
+        }
+        for (int r = 0; r < rings; ++r) {
+            std::vector<char> nx = in;
+            for (auto& t : mesh.faces)
+                if (in[t[0]] || in[t[1]] || in[t[2]]) nx[t[0]] = nx[t[1]] = nx[t[2]] = 1;
+            in.swap(nx);
+        }
+        IsometricOptions lo;
+        lo.scale = scale;
+        lo.max_iterations = local_iterations;
+        for (int v = 0; v < mesh.num_vertices(); ++v)
+            if (in[v]) lo.movable.push_back(v);
+        auto tl = Clock::now();
+        IsometricStats ls = optimise_isometric(mesh, uv, fixed, lo);
+        std::fprintf(stderr, "local round %d: %zu hot faces, %zu movable, %d it, %s, %.0f ms, SD/4 %.4f -> %.4f\n", round, nhot,
+                     lo.movable.size(), ls.iterations, ls.stop.c_str(), ms_since(tl), ls.energy_before() / 4, ls.energy_after() / 4);
+    }
     IsometricOptions o;
+    o.scale = scale;
     o.max_iterations = iterations;
     double last = 0;
     o.on_iteration = [&](int it, const std::vector<Vec2>&, double e) {
@@ -125,6 +179,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "uv hash %zx\n", hash);
     std::fprintf(stderr, "done: %d it, %d fact, %s, %.0f ms, SD/4 %.4f -> %.4f\n", st.iterations, st.factorisations,
                  st.stop.c_str(), ms_since(t0), st.energy_before() / 4, st.energy_after() / 4);
-    (void)sweeps;
 }
 

@@ -13,6 +13,7 @@
 #include "ctmap/errors.h"
 #include "ctmap/face_jacobian.h"
 #include "ctmap/refine/border_guard.h"
+#include "ctmap/refine/box_barrier.h"
 #include "ctmap/refine/face_newton.h"
 #include "ctmap/refine/flip_free_step.h"
 #include "ctmap/refine/sparse_cholesky.h"
@@ -201,11 +202,9 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         if (dof[v].n == 2) ++stats.free_vertices;
         else ++stats.sliding_vertices;
     }
-    // The free border's barrier (Smith & Schaefer 2015, §5, for the rectangle's four walls): for
-    // a free border vertex at distance x < eps from a wall, w_v (eps / x - 1)^2, zero beyond eps
-    // and infinite at the wall, with eps a tenth of the mean UV border edge and w_v the vertex's share of
-    // the energy (4 x its third of the area of its faces, over the whole area). It keeps the
-    // border in the image without stopping the descent the way clamping would.
+    // The free border's barrier (box_barrier.h), with eps a tenth of the mean UV border edge and
+    // each free border vertex's weight its share of the energy (4 x its third of the area of its
+    // faces, over the whole area).
     std::vector<double> barrier_weight(nv, 0.0);
     double eps = 0;
     for (std::size_t i = 0; i < loop.size(); ++i) eps += (uv[loop[i]] - uv[loop[(i + 1) % loop.size()]]).norm();
@@ -217,36 +216,8 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     std::vector<int> barrier_vertices;
     for (int v : loop)
         if (barrier_weight[v] > 0) barrier_vertices.push_back(v);
-    // Per wall distance x: value, first and second derivative of (eps / x - 1)^2 for x < eps.
-    auto wall = [&](double x, double& phi, double& d1, double& d2) {
-        phi = d1 = d2 = 0;
-        if (!(x < eps)) return;
-        if (!(x > 0)) {
-            phi = std::numeric_limits<double>::infinity();
-            return;
-        }
-        const double g = eps / x - 1, g1 = -eps / (x * x), g2 = 2 * eps / (x * x * x);
-        phi = g * g;
-        d1 = 2 * g * g1;
-        d2 = 2 * g1 * g1 + 2 * g * g2;
-    };
-    // Calls f(vertex, axis, sign, distance) for each wall of each barrier vertex.
-    auto for_walls = [&](const std::vector<Vec2>& x, auto&& f) {
-        for (int v : barrier_vertices)
-            for (int c = 0; c < 2; ++c) {
-                f(v, c, +1.0, x[v][c] - box_lo[c]);
-                f(v, c, -1.0, box_hi[c] - x[v][c]);
-            }
-    };
-    auto barrier_of = [&](const std::vector<Vec2>& x) {
-        double b = 0;
-        for_walls(x, [&](int v, int, double, double dist) {
-            double phi, d1, d2;
-            wall(dist, phi, d1, d2);
-            b += barrier_weight[v] * phi;
-        });
-        return b;
-    };
+    const BoxBarrier barrier(std::move(barrier_vertices), std::move(barrier_weight), box_lo, box_hi, eps);
+    auto barrier_of = [&](const std::vector<Vec2>& x) { return barrier.value(x); };
     stats.energy.push_back(energy_of(uv));
     double objective = stats.energy.back() + barrier_of(uv);
     if (unknowns == 0) {
@@ -357,13 +328,10 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         }
         // The barrier's Newton terms: dx = sign * dist, so the gradient is w phi' sign and the
         // Hessian w phi'' on the vertex's own coordinate.
-        for_walls(uv, [&](int v, int c, double sign, double dist) {
-            double phi, d1, d2;
-            wall(dist, phi, d1, d2);
-            if (d2 == 0 && d1 == 0) return;
+        barrier.for_terms(uv, [&](int v, int c, double sign, double d1, double d2) {
             const int r = dof[v].first + c;
-            rhs[r] -= barrier_weight[v] * d1 * sign;
-            if (refresh) K.valuePtr()[diag[r]] += barrier_weight[v] * d2;
+            rhs[r] -= d1 * sign;
+            if (refresh) K.valuePtr()[diag[r]] += d2;
         });
         // A whisper of regularisation keeps the system definite where zero-area faces leave a
         // vertex without energy and where the projected Hessian is only semi-definite.
