@@ -4,6 +4,8 @@
 #include <Eigen/SparseCholesky>
 #include <dlfcn.h>  // dlsym, dlvsym (_GNU_SOURCE, which g++ defines)
 
+#include <mutex>
+
 #include "ctmap/errors.h"
 
 namespace ctmap {
@@ -97,6 +99,13 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& K, bool small)
     // is poor, which on these systems it is not by its measure.)
     c.nmethods = 1;
     c.method[0].ordering = CHOLMOD_METIS;
+    // METIS draws from a random number generator whose state is global to the process (GKlib's),
+    // seeded at each call: two analyses at once (map_charts maps its charts in parallel) disturbed
+    // each other's orderings, and the maps then differed in their last bits
+    // (Isometric.TwoOptimisersAtOnceGiveTheMapsOfOneAtATime failed 28 of 30 times). One analysis
+    // at a time; the factorisations and solves still run in parallel.
+    static std::mutex analysis;
+    const std::lock_guard<std::mutex> one_at_a_time(analysis);
     const InCholmod inside;
     impl_->supernodal.analyzePattern(K);
 }
