@@ -45,6 +45,33 @@ static void rd(std::ifstream& f, std::vector<T>& v) {
     f.read((char*)v.data(), n * sizeof(T));
 }
 
+/// The scale that gives the mesh the map's UV area (the optimiser's default, IsometricOptions::scale).
+static double area_scale(const TriMesh& mesh, const std::vector<Vec2>& uv) {
+    double a3 = 0, a2 = 0;
+    for (auto& t : mesh.faces) {
+        a3 += face_frame(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]).area;
+        Vec2 q1 = uv[t[1]] - uv[t[0]], q2 = uv[t[2]] - uv[t[0]];
+        a2 += 0.5 * std::abs(q1.x() * q2.y() - q1.y() * q2.x());
+    }
+    return std::sqrt(a2 / a3);
+}
+
+/// Per face: its area times (symmetric Dirichlet density - 4), the mesh scaled by `k`; `area` gets
+/// the scaled total area.
+static std::vector<double> excess_energy(const TriMesh& mesh, const std::vector<Vec2>& uv, double k, double* area = nullptr) {
+    const auto& f0 = mesh.faces[0];
+    const int sig = orientation_2d(uv[f0[0]], uv[f0[1]], uv[f0[2]]);
+    std::vector<double> ex;
+    double a = 0;
+    for (auto& t : mesh.faces) {
+        FaceFrame F = face_frame(k * mesh.positions[t[0]], k * mesh.positions[t[1]], k * mesh.positions[t[2]], sig < 0);
+        ex.push_back(F.area > 0 ? F.area * (symmetric_dirichlet_density(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]])) - 4) : 0);
+        a += F.area;
+    }
+    if (area) *area = a;
+    return ex;
+}
+
 int main(int argc, char** argv) {
     std::string path = argv[1];
     int levels = 0, features = 50, seed = 1, rounds = 0, iterations = 1000, rings = 3, local_iterations = 30;
@@ -88,25 +115,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%d faces, %zu features\n", mesh.num_faces(), fixed.size());
     // energy distribution
     {
-        double a3 = 0, a2 = 0;
-        for (auto& t : mesh.faces) {
-            a3 += face_frame(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]).area;
-            Vec2 q1 = uv[t[1]] - uv[t[0]], q2 = uv[t[2]] - uv[t[0]];
-            a2 += 0.5 * std::abs(q1.x() * q2.y() - q1.y() * q2.x());
-        }
-        double k = std::sqrt(a2 / a3);
-        std::vector<double> ex;
-        double tot = 0, area = 0;
-        int sig = 0;
-        for (auto& t : mesh.faces) {
-            sig = orientation_2d(uv[t[0]], uv[t[1]], uv[t[2]]);
-            break;
-        }
-        for (auto& t : mesh.faces) {
-            FaceFrame F = face_frame(k * mesh.positions[t[0]], k * mesh.positions[t[1]], k * mesh.positions[t[2]], sig < 0);
-            double e = F.area > 0 ? F.area * (symmetric_dirichlet_density(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]])) - 4) : 0;
-            ex.push_back(e), tot += e, area += F.area;
-        }
+        double area = 0;
+        std::vector<double> ex = excess_energy(mesh, uv, area_scale(mesh, uv), &area);
+        double tot = 0;
+        for (double e : ex) tot += e;
         std::sort(ex.rbegin(), ex.rend());
         double s = 0;
         std::size_t n = ex.size();
@@ -123,22 +135,11 @@ int main(int argc, char** argv) {
     double scale = 0;
     for (int round = 0; round < rounds; ++round) {
         // hot faces: the fewest holding `hot` of the excess energy
-        double a3 = 0, a2 = 0;
-        for (auto& t : mesh.faces) {
-            a3 += face_frame(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]).area;
-            Vec2 q1 = uv[t[1]] - uv[t[0]], q2 = uv[t[2]] - uv[t[0]];
-            a2 += 0.5 * std::abs(q1.x() * q2.y() - q1.y() * q2.x());
-        }
-        if (scale == 0) scale = std::sqrt(a2 / a3);
-        const int sig = orientation_2d(uv[mesh.faces[0][0]], uv[mesh.faces[0][1]], uv[mesh.faces[0][2]]);
+        if (scale == 0) scale = area_scale(mesh, uv);
+        const std::vector<double> per_face = excess_energy(mesh, uv, scale);
         std::vector<std::pair<double, int>> ex;
         double tot = 0;
-        for (int f = 0; f < mesh.num_faces(); ++f) {
-            auto& t = mesh.faces[f];
-            FaceFrame F = face_frame(scale * mesh.positions[t[0]], scale * mesh.positions[t[1]], scale * mesh.positions[t[2]], sig < 0);
-            double e = F.area > 0 ? F.area * (symmetric_dirichlet_density(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]])) - 4) : 0;
-            ex.push_back({e, f}), tot += e;
-        }
+        for (int f = 0; f < mesh.num_faces(); ++f) ex.push_back({per_face[f], f}), tot += per_face[f];
         std::sort(ex.rbegin(), ex.rend());
         std::vector<char> in(mesh.num_vertices(), 0);
         double s = 0;

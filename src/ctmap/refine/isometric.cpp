@@ -217,9 +217,8 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     for (int v : loop)
         if (barrier_weight[v] > 0) barrier_vertices.push_back(v);
     const BoxBarrier barrier(std::move(barrier_vertices), std::move(barrier_weight), box_lo, box_hi, eps);
-    auto barrier_of = [&](const std::vector<Vec2>& x) { return barrier.value(x); };
     stats.energy.push_back(energy_of(uv));
-    double objective = stats.energy.back() + barrier_of(uv);
+    double objective = stats.energy.back() + barrier.value(uv);
     if (unknowns == 0) {
         stats.stop = "no free vertex";
         stats.converged = true;
@@ -397,7 +396,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             if (h > 0) ++stats.halvings;
             for (int v = 0; v < nv; ++v) trial[v] = dof[v].n == 0 ? uv[v] : Vec2(uv[v] + step * d[v]);
             sd1 = energy_of(trial);
-            e1 = sd1 + barrier_of(trial);
+            e1 = sd1 + barrier.value(trial);
             if (!(e1 < e0)) continue;
             std::atomic<bool> exact_ok{true};
             for_faces(na, o.parallel, [&](int i) {
