@@ -117,7 +117,18 @@ def main():
     ap.add_argument("--data", default=os.environ.get("CTMAP_DATA", "../shared/data"))
     ap.add_argument("--markdown", default="BENCHMARKS.md")
     ap.add_argument("--quick", action="store_true", help="two random rows per mesh, one speed row per mesh")
+    ap.add_argument("--speed-only", action="store_true",
+                    help="rerun only the speed rows (on a quiet machine) and replace them in the section")
     a = ap.parse_args()
+    if a.speed_only:
+        speed = run_speed(a)
+        text = open(a.markdown).read()
+        head = "|---|---|---|---|---|---|---|\n"
+        start = text.index(head, text.index("### Speed against CGAL's ARAP")) + len(head)
+        end = text.index(DIST_END, start)
+        open(a.markdown, "w").write(text[:start] + "\n".join(speed) + "\n\n" + text[end:])
+        print("\n".join(speed))
+        return
     with tempfile.TemporaryDirectory() as tmp:
         real = run_real(a, tmp)
     rnd, gaps, n_valid, n = run_random(a)

@@ -16,18 +16,11 @@
 #include "ctmap/refine/box_barrier.h"
 #include "ctmap/refine/face_newton.h"
 #include "ctmap/refine/flip_free_step.h"
+#include "ctmap/refine/newton_system.h"
 #include "ctmap/refine/sparse_cholesky.h"
 
 namespace ctmap {
 namespace {
-
-/// How a vertex moves in a Newton step: dx = P dy with dy its `n` unknowns (n = 0: fixed; n = 1:
-/// along `dir`, P = dir; n = 2: freely, P = I).
-struct Dof {
-    int first = -1, n = 0;
-    Vec2 dir = Vec2::Zero();
-    Vec2 column(int i) const { return n == 1 ? dir : Vec2(i == 0, i == 1); }
-};
 
 /// Sums over the faces in fixed chunks added in order: the same bits whatever the threads.
 template <class F>
@@ -194,9 +187,19 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
                 s = e;
             }
     }
+    // Numbered vertex by vertex in a fill-reducing order (sparse_cholesky.h); a local
+    // optimisation's small system is ordered by its simplicial factorisation.
+    std::vector<int> order;
+    if (local_only) {
+        for (int v = 0; v < nv; ++v)
+            if (dof[v].n > 0) order.push_back(v);
+    } else {
+        std::vector<char> has_unknowns(nv, 0);
+        for (int v = 0; v < nv; ++v) has_unknowns[v] = dof[v].n > 0;
+        order = fill_reducing_order(mesh.faces, has_unknowns);
+    }
     int unknowns = 0;
-    for (int v = 0; v < nv; ++v) {
-        if (dof[v].n == 0) continue;
+    for (int v : order) {
         dof[v].first = unknowns;
         unknowns += dof[v].n;
         if (dof[v].n == 2) ++stats.free_vertices;
@@ -229,41 +232,17 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         stats.stop = "iterations";
         return stats;
     }
-    // The system's pattern (lower triangle), once, and where each face's entries go in it.
-    Eigen::SparseMatrix<double> K(unknowns, unknowns);
-    std::vector<int> entry;  // per face, per (k, l, i, j) with row >= col, in loop order: index into K's values
-    std::vector<int> diag(unknowns, -1);
-    {
-        std::vector<Eigen::Triplet<double>> trip;
-        trip.reserve(std::size_t(nf) * 21);
-        for (const Tri& t : mesh.faces)
-            for (int a = 0; a < 3; ++a)
-                for (int b = 0; b < 3; ++b)
-                    for (int i = 0; i < dof[t[a]].n; ++i)
-                        for (int j = 0; j < dof[t[b]].n; ++j) {
-                            const int r = dof[t[a]].first + i, c = dof[t[b]].first + j;
-                            if (r >= c) trip.emplace_back(r, c, 0.0);
-                        }
-        K.setFromTriplets(trip.begin(), trip.end());
-        K.makeCompressed();
-        entry.reserve(trip.size());
-        const int* outer = K.outerIndexPtr();
-        const int* inner = K.innerIndexPtr();
-        for (const auto& e : trip) {
-            const int* p = std::lower_bound(inner + outer[e.col()], inner + outer[e.col() + 1], e.row());
-            entry.push_back(int(p - inner));
-        }
-        for (int c = 0; c < unknowns; ++c)
-            diag[c] = int(std::lower_bound(inner + outer[c], inner + outer[c + 1], c) - inner);
-    }
+    // The system's pattern, once (newton_system.h).
+    NewtonSystem system(step_faces, dof, unknowns);
+    Eigen::SparseMatrix<double>& K = system.matrix();
     // A local optimisation (`movable`) has a small system: the simplicial factorisation.
     SparseCholesky solver(K, local_only);
 
     const BorderGuard guard(loop, box_lo, box_hi);
 
-    // Per face: the singular vectors and values of J and the four eigenvalues of the energy's
-    // Hessian with respect to J, projected to be non-negative (face_newton below).
-    std::vector<FaceNewton> local(na);  // per active face
+    // Per face: its share of the Newton system, from the closed-form eigensystem of the energy's
+    // Hessian with respect to J, projected to be non-negative (face_newton.h, newton_system.h).
+    std::vector<FaceHessian> local(na);  // per active face
     std::vector<Vec2> d(nv), trial(nv);
     Eigen::VectorXd rhs(unknowns), y(unknowns);
 
@@ -285,66 +264,37 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         for_faces(na, o.parallel, [&](int i) {
             const int f = active[i];
             const FaceFrame& F = frame[f];
-            if (F.area == 0) return;
-            const Tri& t = mesh.faces[f];
-            local[i] = face_newton(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]]));
-        });
-        // The Newton system in the unknowns: per face, the blocks A sum_i lambda_i (E_i g_k)(E_i g_l)^T
-        // of the projected Hessian and the gradient A dPsi/dJ g_k.
-        if (refresh) std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
-        rhs.setZero();
-        std::size_t next = 0;
-        for (int ai = 0; ai < na; ++ai) {  // in face order, as the pattern's entries were listed
-            const int f = active[ai];
-            const Tri& t = mesh.faces[f];
-            const FaceFrame& F = frame[f];
-            Vec2 g[3];
-            face_gradients(F, g);
-            const FaceNewton& L = local[ai];
-            Vec2 eg[4][3];  // E_i g_k
-            for (int i = 0; i < 4; ++i)
-                for (int k = 0; k < 3; ++k) eg[i][k] = L.mode[i] * g[k];
-            for (int a = 0; a < 3; ++a) {
-                const Dof& da = dof[t[a]];
-                for (int b = 0; b < 3; ++b) {
-                    const Dof& db = dof[t[b]];
-                    if (!refresh) continue;
-                    Mat2 H = Mat2::Zero();
-                    if (F.area > 0)
-                        for (int i = 0; i < 4; ++i) H += (F.area / area_sum * L.lambda[i]) * eg[i][a] * eg[i][b].transpose();
-                    for (int i = 0; i < da.n; ++i)
-                        for (int j = 0; j < db.n; ++j) {
-                            const int r = da.first + i, c = db.first + j;
-                            if (r < c) continue;
-                            K.valuePtr()[entry[next++]] += da.column(i).dot(H * db.column(j));
-                        }
-                }
-                if (da.n > 0 && F.area > 0) {
-                    const Vec2 grad = F.area / area_sum * (L.dpsi * g[a]);
-                    for (int i = 0; i < da.n; ++i) rhs[da.first + i] -= da.column(i).dot(grad);
-                }
+            if (F.area == 0) {
+                local[i] = face_hessian(F, FaceNewton(), 0);  // none
+                return;
             }
-        }
+            const Tri& t = mesh.faces[f];
+            const FaceNewton L = face_newton(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]]));
+            if (refresh) local[i] = face_hessian(F, L, 1 / area_sum);
+            else face_gradient(F, L, 1 / area_sum, local[i].gradient);  // the blocks stay the factorised ones'
+        });
+        // The Newton system in the unknowns (newton_system.h).
+        system.assemble(local, refresh, rhs, o.parallel);
         // The barrier's Newton terms: dx = sign * dist, so the gradient is w phi' sign and the
         // Hessian w phi'' on the vertex's own coordinate.
         barrier.for_terms(uv, [&](int v, int c, double sign, double d1, double d2) {
             const int r = dof[v].first + c;
             rhs[r] -= d1 * sign;
-            if (refresh) K.valuePtr()[diag[r]] += d2;
+            if (refresh) K.valuePtr()[system.diagonal(r)] += d2;
         });
         // A whisper of regularisation keeps the system definite where zero-area faces leave a
         // vertex without energy and where the projected Hessian is only semi-definite.
         if (refresh) {
             double trace = 0;
-            for (int c = 0; c < unknowns; ++c) trace += K.valuePtr()[diag[c]];
+            for (int c = 0; c < unknowns; ++c) trace += K.valuePtr()[system.diagonal(c)];
             const double whisper = 1e-10 * trace / unknowns;
-            for (int c = 0; c < unknowns; ++c) K.valuePtr()[diag[c]] += whisper;
+            for (int c = 0; c < unknowns; ++c) K.valuePtr()[system.diagonal(c)] += whisper;
             // Border vertices held at a contact in the last iterations stay put in this step: a
             // stiff spring on their unknowns, so that the rest of the step is the Newton step with
             // them fixed (zeroing them in the free step afterwards need not leave a descent direction).
             for (int v : loop)
                 if (dof[v].n > 0 && pin_until[v] > it)
-                    for (int i = 0; i < dof[v].n; ++i) K.valuePtr()[diag[dof[v].first + i]] += 1e8 * trace / unknowns;
+                    for (int i = 0; i < dof[v].n; ++i) K.valuePtr()[system.diagonal(dof[v].first + i)] += 1e8 * trace / unknowns;
             ++stats.factorisations;
             if (!solver.factorize(K)) {
                 stats.stop = "no descent step";
@@ -359,7 +309,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             for (int v : loop)
                 if (dof[v].n > 0 && pin_until[v] > it)
                     for (int i = 0; i < dof[v].n; ++i) r[dof[v].first + i] = 0;
-            const Eigen::VectorXd Kr = K.selfadjointView<Eigen::Lower>() * r;
+            const Eigen::VectorXd Kr = K.selfadjointView<Eigen::Upper>() * r;
             const double curvature = r.dot(Kr);
             y = curvature > 0 ? Eigen::VectorXd(r.dot(r) / curvature * r) : r;
         } else {

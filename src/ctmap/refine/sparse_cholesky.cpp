@@ -4,7 +4,9 @@
 #include <Eigen/SparseCholesky>
 #include <dlfcn.h>  // dlsym, dlvsym (_GNU_SOURCE, which g++ defines)
 
+#include <algorithm>
 #include <mutex>
+#include <utility>
 
 #include "ctmap/errors.h"
 
@@ -34,6 +36,13 @@ public:
 private:
     bool saved_;
 };
+
+/// METIS draws from a random number generator whose state is global to the process (GKlib's),
+/// seeded at each call: two orderings at once (map_charts maps its charts in parallel) disturbed
+/// each other, and the maps then differed in their last bits
+/// (Isometric.TwoOptimisersAtOnceGiveTheMapsOfOneAtATime failed 28 of 30 times). One METIS call
+/// at a time; the factorisations and solves still run in parallel.
+std::mutex metis_lock;
 
 }  // namespace
 }  // namespace ctmap
@@ -67,14 +76,61 @@ extern "C" __attribute__((visibility("default"))) void GOMP_parallel(void (*fn)(
 
 namespace ctmap {
 
+std::vector<int> fill_reducing_order(const std::vector<Tri>& faces, const std::vector<char>& has_unknowns) {
+    const int nv = int(has_unknowns.size());
+    std::vector<int> index(nv, -1), vertex;
+    for (int v = 0; v < nv; ++v)
+        if (has_unknowns[v]) index[v] = int(vertex.size()), vertex.push_back(v);
+    const int n = int(vertex.size());
+    if (n == 0) return vertex;
+    // The vertex graph: its edges (i, j), i < j, as the upper triangle of a pattern matrix.
+    std::vector<std::pair<int, int>> edges;
+    edges.reserve(faces.size() * 3);
+    for (const Tri& t : faces)
+        for (int k = 0; k < 3; ++k) {
+            const int a = t[k] < nv ? index[t[k]] : -1, b = t[(k + 1) % 3] < nv ? index[t[(k + 1) % 3]] : -1;
+            if (a < 0 || b < 0 || a == b) continue;
+            edges.emplace_back(std::min(a, b), std::max(a, b));
+        }
+    for (auto& e : edges) std::swap(e.first, e.second);  // sort by column, then row
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    cholmod_common c;
+    cholmod_start(&c);
+    std::vector<int> perm(n);
+    bool ok = false;
+    {
+        const std::lock_guard<std::mutex> one_at_a_time(metis_lock);
+        const InCholmod inside;
+        if (cholmod_sparse* A = cholmod_allocate_sparse(n, n, edges.size(), true, true, 1, CHOLMOD_PATTERN, &c)) {
+            int* p = static_cast<int*>(A->p);
+            int* row = static_cast<int*>(A->i);
+            std::size_t k = 0;
+            for (int col = 0; col < n; ++col) {
+                p[col] = int(k);
+                while (k < edges.size() && edges[k].first == col) row[k] = edges[k].second, ++k;
+            }
+            p[n] = int(k);
+            ok = cholmod_metis(A, nullptr, 0, true, perm.data(), &c) != 0;
+            cholmod_free_sparse(&A, &c);
+        }
+    }
+    cholmod_finish(&c);
+    if (!ok) return vertex;  // out of memory in METIS: the vertices' own order (still correct, more fill)
+    std::vector<int> order(n);
+    for (int k = 0; k < n; ++k) order[k] = vertex[perm[k]];
+    return order;
+}
+
 struct SparseCholesky::Impl {
     explicit Impl(bool small_) : small(small_) { single_threaded_blas(); }
     bool small;
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> supernodal;
-    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> simplicial;
+    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> supernodal;
+    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Upper> simplicial;
 };
 
-SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& K, bool small) : impl_(nullptr) {
+SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& K, bool small, const SupernodeAmalgamation& amalgamation)
+    : impl_(nullptr) {
     if (K.rows() != K.cols())
         throw BadInput("", "SparseCholesky: the matrix is " + std::to_string(K.rows()) + " x " +
                                std::to_string(K.cols()) + ", not square");
@@ -83,29 +139,18 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& K, bool small)
         impl_->simplicial.analyzePattern(K);
         return;
     }
-    // Relaxed supernode amalgamation: CHOLMOD merges supernodes of up to 16, 64 and 192 columns
-    // while under 99%, 40% and 20% of the merged block are zeros (its defaults: 4, 16, 48 columns,
-    // 80%, 10%, 5%). Fewer, larger supernodes: each costs an OpenMP region (a futex wake even when
-    // serial, see GOMP_parallel above) and a BLAS call, which on these systems cost more than the added
-    // fill. A factorisation on mannequin-devil with 50 features (30,430 unknowns) went from 68 to
-    // 35 ms, on lion-head with 50 (20,316) from 41 to 24 ms (BENCHMARKS.md, "Speed against CGAL's ARAP").
+    // Supernode amalgamation: CHOLMOD's own by default. Larger supernodes (16, 64, 192 columns,
+    // 99%, 40%, 20% zeros) paid while libgomp woke a futex per supernode (GOMP_parallel above);
+    // without that, their extra zeros cost more (bench/bench_cholesky.cpp).
     cholmod_common& c = impl_->supernodal.cholmod();
-    c.nrelax[0] = 16, c.nrelax[1] = 64, c.nrelax[2] = 192;
-    c.zrelax[0] = 0.99, c.zrelax[1] = 0.4, c.zrelax[2] = 0.2;
-    // The fill-reducing ordering: METIS's nested dissection, which on these planar meshes needs a
-    // third fewer flops per factorisation than AMD (mannequin-devil with 50 features: 1.19e8
-    // against 1.77e8, 21 against 25 ms per factorisation, the whole optimiser 13% faster) and
-    // costs more only once, in the analysis. (CHOLMOD's default tries METIS only when AMD's fill
-    // is poor, which on these systems it is not by its measure.)
+    for (int k = 0; k < 3; ++k) c.nrelax[k] = amalgamation.columns[k], c.zrelax[k] = amalgamation.zeros[k];
+    // K comes in a fill-reducing order (fill_reducing_order): factorised as it is, upper
+    // triangle, so CHOLMOD reads it in place. (With an ordering of its own it made a permuted
+    // transposed copy per factorisation: cholmod_transpose_sym, 6% of the optimiser's time on
+    // mannequin-devil with 50 features.)
     c.nmethods = 1;
-    c.method[0].ordering = CHOLMOD_METIS;
-    // METIS draws from a random number generator whose state is global to the process (GKlib's),
-    // seeded at each call: two analyses at once (map_charts maps its charts in parallel) disturbed
-    // each other's orderings, and the maps then differed in their last bits
-    // (Isometric.TwoOptimisersAtOnceGiveTheMapsOfOneAtATime failed 28 of 30 times). One analysis
-    // at a time; the factorisations and solves still run in parallel.
-    static std::mutex analysis;
-    const std::lock_guard<std::mutex> one_at_a_time(analysis);
+    c.method[0].ordering = CHOLMOD_NATURAL;
+    c.postorder = false;
     const InCholmod inside;
     impl_->supernodal.analyzePattern(K);
 }

@@ -1,0 +1,143 @@
+#include "ctmap/refine/newton_system.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+namespace ctmap {
+
+NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>& dof, int unknowns)
+    : faces_(faces), dof_(dof), K_(unknowns, unknowns), diag_(unknowns, -1) {
+    const int nv = int(dof.size()), nf = int(faces.size());
+    // The corners of each vertex with unknowns, faces ascending (a counting sort).
+    std::vector<int> owner_of(nv, -1);
+    for (int v = 0; v < nv; ++v)
+        if (dof[v].n > 0) owner_of[v] = int(owners_.size()), owners_.push_back(v);
+    const int no = int(owners_.size());
+    corner_start_.assign(no + 1, 0);
+    for (const Tri& t : faces)
+        for (int v : t)
+            if (owner_of[v] >= 0) ++corner_start_[owner_of[v] + 1];
+    for (int o = 0; o < no; ++o) corner_start_[o + 1] += corner_start_[o];
+    corner_.resize(corner_start_[no]);
+    {
+        std::vector<int> fill(corner_start_.begin(), corner_start_.end() - 1);
+        for (int f = 0; f < nf; ++f)
+            for (int k = 0; k < 3; ++k)
+                if (owner_of[faces[f][k]] >= 0) corner_[fill[owner_of[faces[f][k]]]++] = 3 * f + k;
+    }
+    // The pattern: the upper triangle, (r, c) with r <= c.
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(std::size_t(corner_.size()) * 7);
+    for (int o = 0; o < no; ++o) {
+        const Dof& dv = dof[owners_[o]];
+        for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s) {
+            const Tri& t = faces[corner_[s] / 3];
+            for (int a = 0; a < 3; ++a) {
+                const Dof& dw = dof[t[a]];
+                for (int i = 0; i < dw.n; ++i)
+                    for (int j = 0; j < dv.n; ++j)
+                        if (dw.first + i <= dv.first + j) trip.emplace_back(dw.first + i, dv.first + j, 0.0);
+            }
+        }
+    }
+    K_.setFromTriplets(trip.begin(), trip.end());
+    K_.makeCompressed();
+    trip = {};
+    // Where a block (w, v) sits in v's columns: the rows of v's second column are those of its
+    // first and its own second unknown, so row w.first has the same rank in both, and w's second
+    // row follows its first.
+    const int* outer = K_.outerIndexPtr();
+    const int* inner = K_.innerIndexPtr();
+    rank_.assign(corner_.size() * 3, -1);
+    for (int o = 0; o < no; ++o) {
+        const Dof& dv = dof[owners_[o]];
+        const int* col = inner + outer[dv.first];
+        const int* end = inner + outer[dv.first + 1];
+        for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s) {
+            const Tri& t = faces[corner_[s] / 3];
+            for (int a = 0; a < 3; ++a) {
+                const Dof& dw = dof[t[a]];
+                if (dw.n > 0 && dw.first <= dv.first) rank_[3 * s + a] = int(std::lower_bound(col, end, dw.first) - col);
+            }
+        }
+    }
+    for (int c = 0; c < unknowns; ++c)
+        diag_[c] = int(std::lower_bound(inner + outer[c], inner + outer[c + 1], c) - inner);
+}
+
+void face_gradient(const FaceFrame& F, const FaceNewton& L, double weight, Vec2 gradient[3]) {
+    if (!(F.area > 0)) {
+        for (int a = 0; a < 3; ++a) gradient[a].setZero();
+        return;
+    }
+    Vec2 g[3];
+    face_gradients(F, g);
+    const double w = weight * F.area;
+    for (int a = 0; a < 3; ++a) gradient[a] = w * (L.dpsi * g[a]);
+}
+
+FaceHessian face_hessian(const FaceFrame& F, const FaceNewton& L, double weight) {
+    FaceHessian h;
+    face_gradient(F, L, weight, h.gradient);
+    if (!(F.area > 0)) {
+        for (Mat2& m : h.block) m.setZero();
+        return h;
+    }
+    Vec2 g[3];
+    face_gradients(F, g);
+    const double w = weight * F.area;
+    Vec2 eg[4][3];  // E_i g_k
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) eg[i][k] = L.mode[i] * g[k];
+    for (int a = 0, s = 0; a < 3; ++a)
+        for (int b = 0; b <= a; ++b, ++s) {
+            Mat2 H = Mat2::Zero();
+            for (int i = 0; i < 4; ++i) H += (w * L.lambda[i]) * eg[i][a] * eg[i][b].transpose();
+            h.block[s] = H;
+        }
+    return h;
+}
+
+void NewtonSystem::assemble(const std::vector<FaceHessian>& local, bool hessian, Eigen::VectorXd& rhs,
+                            bool parallel) {
+    double* value = K_.valuePtr();
+    const int* outer = K_.outerIndexPtr();
+    auto column = [&](int o) {
+        const Dof& dv = dof_[owners_[o]];
+        for (int j = 0; j < dv.n; ++j) rhs[dv.first + j] = 0;
+        if (hessian) std::fill(value + outer[dv.first], value + outer[dv.first + dv.n], 0.0);
+        for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s) {
+            const int f = corner_[s] / 3, b = corner_[s] % 3;
+            const Tri& t = faces_[f];
+            const FaceHessian& h = local[f];
+            if (hessian)
+                for (int a = 0; a < 3; ++a) {
+                    const int r = rank_[3 * s + a];
+                    if (r < 0) continue;
+                    const Dof& dw = dof_[t[a]];
+                    const Mat2 H = h.at(a, b);
+                    if (dv.n == 2 && dw.n == 2) {  // free vertices: the block as it is
+                        double* c0 = value + outer[dv.first] + r;
+                        double* c1 = value + outer[dv.first + 1] + r;
+                        c0[0] += H(0, 0);
+                        if (a != b) c0[1] += H(1, 0);  // the diagonal block's (1, 0) is below it
+                        c1[0] += H(0, 1);
+                        c1[1] += H(1, 1);
+                        continue;
+                    }
+                    for (int j = 0; j < dv.n; ++j) {
+                        double* col = value + outer[dv.first + j] + r;
+                        for (int i = 0; i < dw.n; ++i)
+                            if (dw.first + i <= dv.first + j) col[i] += dw.column(i).dot(H * dv.column(j));
+                    }
+                }
+            for (int j = 0; j < dv.n; ++j) rhs[dv.first + j] -= dv.column(j).dot(h.gradient[b]);
+        }
+    };
+    const int no = int(owners_.size());
+    if (parallel) tbb::parallel_for(0, no, column);
+    else for (int o = 0; o < no; ++o) column(o);
+}
+
+}  // namespace ctmap
