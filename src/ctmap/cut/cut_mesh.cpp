@@ -259,15 +259,11 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
         }
         return true;
     };
-    auto no_path = [](int u, int w) {
-        return InternalError("cut: no valid path between features " + std::to_string(u) + " and " +
-                             std::to_string(w) + " after refinement");
-    };
 
     if (!shortest_path_first) {
         for (const auto& [u, w] : nearest) {
             const std::optional<FoundPath> found = find(u, w, opt.max_refinements);
-            if (!found) throw no_path(u, w);
+            if (!found) throw no_path_error(u, w);
             if (!insert(u, w, *found)) return std::nullopt;
         }
     } else {

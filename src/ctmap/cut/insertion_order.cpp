@@ -54,10 +54,14 @@ struct Candidate {
 };
 using Queue = std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>>;
 
-InternalError no_path(int u, int w) {
+}  // namespace
+
+InternalError no_path_error(int u, int w) {
     return InternalError("cut: no valid path between features " + std::to_string(u) + " and " + std::to_string(w) +
                          " after refinement");
 }
+
+namespace {
 
 /// Runs one stage: pops candidates until the queue is empty. `wanted(u, w)`: whether the edge is
 /// still to be inserted in this stage; `inserted(u, w)` after each insertion (may push more).
@@ -72,7 +76,7 @@ bool run_stage(Queue& queue, const PathNetworkAccess& net, int& version, Wanted&
         if (top.version == version) {
             std::optional<FoundPath> found = std::move(cache[{top.u, top.w}]);
             if (!found) found = net.find(top.u, top.w, true);
-            if (!found) throw no_path(top.u, top.w);
+            if (!found) throw no_path_error(top.u, top.w);
             if (!net.insert(top.u, top.w, *found)) return false;
             ++version;
             cache.clear();  // every cached path was searched in an older network

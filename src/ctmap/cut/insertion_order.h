@@ -12,6 +12,7 @@
 
 #include "ctmap/cut/approximate_path.h"
 #include "ctmap/domain/feature_triangulation.h"
+#include "ctmap/errors.h"
 
 namespace ctmap {
 
@@ -21,6 +22,9 @@ namespace ctmap {
 /// (InternalError otherwise).
 std::vector<std::array<int, 2>> nearest_first_order(const FeatureTriangulation& ft,
                                                     const std::function<double(int, int)>& distance);
+
+/// The error both orders raise when the edge (u, w) has no valid path even after refinement.
+InternalError no_path_error(int u, int w);
 
 /// How `insert_shortest_path_first` reaches the network.
 struct PathNetworkAccess {
