@@ -47,7 +47,9 @@ class NewtonSystem {
 public:
     /// The pattern of the system over `faces` (all of the mesh's faces, or the active ones of a
     /// local optimisation) in the unknowns `dof` numbers (0 .. `unknowns` - 1).
-    /// \pre every vertex of `faces` has an entry in `dof`; the unknowns are numbered without gaps.
+    /// Keeps references to `faces` and `dof`, which must outlive it and not change.
+    /// \pre every vertex of `faces` has an entry in `dof`; the unknowns are numbered without gaps,
+    /// a vertex's unknowns consecutive.
     NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>& dof, int unknowns);
 
     /// The matrix: its upper triangle holds the system (compressed, column-major).
