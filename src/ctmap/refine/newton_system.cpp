@@ -26,44 +26,49 @@ NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>
             for (int k = 0; k < 3; ++k)
                 if (owner_of[faces[f][k]] >= 0) corner_[fill[owner_of[faces[f][k]]]++] = 3 * f + k;
     }
-    // The pattern: the upper triangle, (r, c) with r <= c.
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(std::size_t(corner_.size()) * 7);
-    for (int o = 0; o < no; ++o) {
-        const Dof& dv = dof[owners_[o]];
-        for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s) {
-            const Tri& t = faces[corner_[s] / 3];
-            for (int a = 0; a < 3; ++a) {
-                const Dof& dw = dof[t[a]];
-                for (int i = 0; i < dw.n; ++i)
-                    for (int j = 0; j < dv.n; ++j)
-                        if (dw.first + i <= dv.first + j) trip.emplace_back(dw.first + i, dv.first + j, 0.0);
-            }
-        }
-    }
-    K_.setFromTriplets(trip.begin(), trip.end());
-    K_.makeCompressed();
-    trip = {};
-    // Where a block (w, v) sits in v's columns: the rows of v's second column are those of its
-    // first and its own second unknown, so row w.first has the same rank in both, and w's second
-    // row follows its first.
-    const int* outer = K_.outerIndexPtr();
-    const int* inner = K_.innerIndexPtr();
+    // The pattern, column by column: the upper triangle, (r, c) with r <= c. Owner v's first
+    // column holds the first unknowns of its neighbours w (and v) numbered up to v's, each
+    // followed by w's second; its second column the same rows and its own second unknown. The
+    // rank of a block (w, v) is where w's first row sits in v's columns (the same in both).
+    std::vector<int> column_of(unknowns, -1);  // owner of each unknown's column
+    for (int o = 0; o < no; ++o)
+        for (int j = 0; j < dof[owners_[o]].n; ++j) column_of[dof[owners_[o]].first + j] = o;
+    std::vector<int> outer(unknowns + 1, 0), inner, firsts;
     rank_.assign(corner_.size() * 3, -1);
-    for (int o = 0; o < no; ++o) {
+    for (int c = 0; c < unknowns; ++c) {
+        outer[c] = int(inner.size());
+        const int o = column_of[c];
         const Dof& dv = dof[owners_[o]];
-        const int* col = inner + outer[dv.first];
-        const int* end = inner + outer[dv.first + 1];
-        for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s) {
-            const Tri& t = faces[corner_[s] / 3];
-            for (int a = 0; a < 3; ++a) {
-                const Dof& dw = dof[t[a]];
-                if (dw.n > 0 && dw.first <= dv.first) rank_[3 * s + a] = int(std::lower_bound(col, end, dw.first) - col);
-            }
+        const int j = c - dv.first;
+        firsts.clear();
+        for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s)
+            for (int v : faces[corner_[s] / 3])
+                if (dof[v].n > 0 && dof[v].first <= dv.first) firsts.push_back(dof[v].first);
+        std::sort(firsts.begin(), firsts.end());
+        firsts.erase(std::unique(firsts.begin(), firsts.end()), firsts.end());
+        for (int r : firsts) {
+            const int n = r == dv.first ? j + 1 : dof[owners_[column_of[r]]].n;  // v itself: up to row c
+            for (int i = 0; i < n; ++i) inner.push_back(r + i);
         }
+        if (j == 0)
+            for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s)
+                for (int a = 0; a < 3; ++a) {
+                    const Dof& dw = dof[faces[corner_[s] / 3][a]];
+                    if (dw.n > 0 && dw.first <= dv.first)
+                        rank_[3 * s + a] = int(std::lower_bound(inner.begin() + outer[c], inner.end(), dw.first) -
+                                               (inner.begin() + outer[c]));
+                }
     }
+    outer[unknowns] = int(inner.size());
+    K_.resize(unknowns, unknowns);
+    K_.resizeNonZeros(Eigen::Index(inner.size()));
+    std::copy(outer.begin(), outer.end(), K_.outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), K_.innerIndexPtr());
+    std::fill(K_.valuePtr(), K_.valuePtr() + inner.size(), 0.0);
+    const int* kouter = K_.outerIndexPtr();
+    const int* kinner = K_.innerIndexPtr();
     for (int c = 0; c < unknowns; ++c)
-        diag_[c] = int(std::lower_bound(inner + outer[c], inner + outer[c + 1], c) - inner);
+        diag_[c] = int(std::lower_bound(kinner + kouter[c], kinner + kouter[c + 1], c) - kinner);
 }
 
 void face_gradient(const FaceFrame& F, const FaceNewton& L, double weight, Vec2 gradient[3]) {
