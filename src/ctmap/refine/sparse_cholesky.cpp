@@ -83,7 +83,10 @@ std::vector<int> fill_reducing_order(const std::vector<Tri>& faces, const std::v
         if (has_unknowns[v]) index[v] = int(vertex.size()), vertex.push_back(v);
     const int n = int(vertex.size());
     if (n == 0) return vertex;
-    // The vertex graph: its edges (i, j), i < j, as the upper triangle of a pattern matrix.
+    // METIS rather than AMD: on these planar meshes nested dissection needs a third fewer flops
+    // per factorisation (mannequin-devil with 50 features: 1.19e8 against 1.77e8), and it costs
+    // more only once. The vertex graph: its edges (i, j), i < j, as the upper triangle of a
+    // pattern matrix.
     std::vector<std::pair<int, int>> edges;
     edges.reserve(faces.size() * 3);
     for (const Tri& t : faces)
