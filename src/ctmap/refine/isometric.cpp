@@ -243,6 +243,8 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     // Per face: its share of the Newton system, from the closed-form eigensystem of the energy's
     // Hessian with respect to J, projected to be non-negative (face_newton.h, newton_system.h).
     std::vector<FaceHessian> local(na);  // per active face
+    for (int i = 0; i < na; ++i)
+        if (frame[active[i]].area == 0) local[i] = face_hessian(frame[active[i]], FaceNewton(), 0);  // none
     std::vector<Vec2> d(nv), trial(nv);
     Eigen::VectorXd rhs(unknowns), y(unknowns);
 
@@ -264,10 +266,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         for_faces(na, o.parallel, [&](int i) {
             const int f = active[i];
             const FaceFrame& F = frame[f];
-            if (F.area == 0) {
-                local[i] = face_hessian(F, FaceNewton(), 0);  // none
-                return;
-            }
+            if (F.area == 0) return;  // its share stays the zeros set below
             const Tri& t = mesh.faces[f];
             const FaceNewton L = face_newton(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]]));
             if (refresh) local[i] = face_hessian(F, L, 1 / area_sum);

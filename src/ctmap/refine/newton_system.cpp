@@ -40,6 +40,12 @@ NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>
         const int o = column_of[c];
         const Dof& dv = dof[owners_[o]];
         const int j = c - dv.first;
+        if (j == 1) {  // the first column's rows and v's own second unknown
+            inner.reserve(inner.size() + (outer[c] - outer[c - 1]) + 1);
+            for (int k = outer[c - 1]; k < outer[c]; ++k) inner.push_back(inner[k]);
+            inner.push_back(c);
+            continue;
+        }
         firsts.clear();
         for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s)
             for (int v : faces[corner_[s] / 3])
@@ -47,17 +53,16 @@ NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>
         std::sort(firsts.begin(), firsts.end());
         firsts.erase(std::unique(firsts.begin(), firsts.end()), firsts.end());
         for (int r : firsts) {
-            const int n = r == dv.first ? j + 1 : dof[owners_[column_of[r]]].n;  // v itself: up to row c
+            const int n = r == dv.first ? 1 : dof[owners_[column_of[r]]].n;  // v itself: only row c here
             for (int i = 0; i < n; ++i) inner.push_back(r + i);
         }
-        if (j == 0)
-            for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s)
-                for (int a = 0; a < 3; ++a) {
-                    const Dof& dw = dof[faces[corner_[s] / 3][a]];
-                    if (dw.n > 0 && dw.first <= dv.first)
-                        rank_[3 * s + a] = int(std::lower_bound(inner.begin() + outer[c], inner.end(), dw.first) -
-                                               (inner.begin() + outer[c]));
-                }
+        for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s)
+            for (int a = 0; a < 3; ++a) {
+                const Dof& dw = dof[faces[corner_[s] / 3][a]];
+                if (dw.n > 0 && dw.first <= dv.first)
+                    rank_[3 * s + a] = int(std::lower_bound(inner.begin() + outer[c], inner.end(), dw.first) -
+                                           (inner.begin() + outer[c]));
+            }
     }
     outer[unknowns] = int(inner.size());
     K_.resize(unknowns, unknowns);
@@ -71,6 +76,15 @@ NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>
         diag_[c] = int(std::lower_bound(kinner + kouter[c], kinner + kouter[c + 1], c) - kinner);
 }
 
+namespace {
+
+/// weight A_f dPsi/dJ g_a per corner, with g the corners' weight gradients.
+void corner_gradients(const FaceNewton& L, const Vec2 g[3], double w, Vec2 gradient[3]) {
+    for (int a = 0; a < 3; ++a) gradient[a] = w * (L.dpsi * g[a]);
+}
+
+}  // namespace
+
 void face_gradient(const FaceFrame& F, const FaceNewton& L, double weight, Vec2 gradient[3]) {
     if (!(F.area > 0)) {
         for (int a = 0; a < 3; ++a) gradient[a].setZero();
@@ -78,20 +92,20 @@ void face_gradient(const FaceFrame& F, const FaceNewton& L, double weight, Vec2 
     }
     Vec2 g[3];
     face_gradients(F, g);
-    const double w = weight * F.area;
-    for (int a = 0; a < 3; ++a) gradient[a] = w * (L.dpsi * g[a]);
+    corner_gradients(L, g, weight * F.area, gradient);
 }
 
 FaceHessian face_hessian(const FaceFrame& F, const FaceNewton& L, double weight) {
     FaceHessian h;
-    face_gradient(F, L, weight, h.gradient);
     if (!(F.area > 0)) {
         for (Mat2& m : h.block) m.setZero();
+        for (Vec2& g : h.gradient) g.setZero();
         return h;
     }
     Vec2 g[3];
     face_gradients(F, g);
     const double w = weight * F.area;
+    corner_gradients(L, g, w, h.gradient);
     Vec2 eg[4][3];  // E_i g_k
     for (int i = 0; i < 4; ++i)
         for (int k = 0; k < 3; ++k) eg[i][k] = L.mode[i] * g[k];
