@@ -87,9 +87,6 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         const Tri& t = mesh.faces[f];
         if (!local_only || !is_fixed[t[0]] || !is_fixed[t[1]] || !is_fixed[t[2]]) active.push_back(f);
     }
-    if (local_only)
-        for (int f : active) active_tris.push_back(mesh.faces[f]);
-    const std::vector<Tri>& step_faces = local_only ? active_tris : mesh.faces;
     const int na = int(active.size());
     // The map's orientation, and the precondition that it is valid.
     int sigma = 0;
@@ -139,8 +136,15 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         for (int f : active) is_active[f] = 1;
         held_energy = chunked_sum(nf, o.parallel, [&](int f) { return is_active[f] ? 0.0 : face_energy(f, uv); });
     }
+    // The active faces' frames and corners in the order of `active` (set below, with the unknowns).
+    std::vector<FaceFrame> active_frame;
     auto energy_of = [&](const std::vector<Vec2>& x) {
-        return (held_energy + chunked_sum(na, o.parallel, [&](int i) { return face_energy(active[i], x); })) / area_sum;
+        return (held_energy + chunked_sum(na, o.parallel, [&](int i) {
+                    const FaceFrame& F = active_frame[i];
+                    if (F.area == 0) return 0.0;
+                    const Tri& t = active_tris[i];
+                    return F.area * symmetric_dirichlet_density(face_jacobian(F, x[t[0]], x[t[1]], x[t[2]]));
+                })) / area_sum;
     };
 
     // Unknowns per vertex.
@@ -205,6 +209,25 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         if (dof[v].n == 2) ++stats.free_vertices;
         else ++stats.sliding_vertices;
     }
+    // The active faces in the unknowns' order (each face by its vertex that comes first in it),
+    // so that the faces whose shares a vertex's columns gather sit together in memory: the
+    // assembly was bound by cache misses on them (17% of the optimiser's samples on
+    // mannequin-devil with 50 features, faces in the mesh's order).
+    {
+        std::vector<int> rank(nv, std::numeric_limits<int>::max());
+        for (int r = 0; r < int(order.size()); ++r) rank[order[r]] = r;
+        std::vector<std::pair<int, int>> key(na);
+        for (int i = 0; i < na; ++i) {
+            const Tri& t = mesh.faces[active[i]];
+            key[i] = {std::min({rank[t[0]], rank[t[1]], rank[t[2]]}), active[i]};
+        }
+        std::sort(key.begin(), key.end());
+        for (int i = 0; i < na; ++i) active[i] = key[i].second;
+    }
+    active_tris.reserve(na);
+    active_frame.reserve(na);
+    for (int f : active) active_tris.push_back(mesh.faces[f]), active_frame.push_back(frame[f]);
+    const std::vector<Tri>& step_faces = active_tris;
     // The free border's barrier (box_barrier.h), with eps a tenth of the mean UV border edge and
     // each free border vertex's weight its share of the energy (4 x its third of the area of its
     // faces, over the whole area).
@@ -244,7 +267,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     // Hessian with respect to J, projected to be non-negative (face_newton.h, newton_system.h).
     std::vector<FaceHessian> local(na);  // per active face
     for (int i = 0; i < na; ++i)
-        if (frame[active[i]].area == 0) local[i] = face_hessian(frame[active[i]], FaceNewton(), 0);  // none
+        if (active_frame[i].area == 0) local[i] = face_hessian(active_frame[i], FaceNewton(), 0);  // none
     std::vector<Vec2> d(nv), trial(nv);
     Eigen::VectorXd rhs(unknowns), y(unknowns);
 
@@ -264,10 +287,9 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     for (int it = 0; it < o.max_iterations;) {
         const double e0 = objective;
         for_faces(na, o.parallel, [&](int i) {
-            const int f = active[i];
-            const FaceFrame& F = frame[f];
+            const FaceFrame& F = active_frame[i];
             if (F.area == 0) return;  // its share stays the zeros set below
-            const Tri& t = mesh.faces[f];
+            const Tri& t = active_tris[i];
             const FaceNewton L = face_newton(face_jacobian(F, uv[t[0]], uv[t[1]], uv[t[2]]));
             if (refresh) local[i] = face_hessian(F, L, 1 / area_sum);
             else face_gradient(F, L, 1 / area_sum, local[i].gradient);  // the blocks stay the factorised ones'
@@ -350,7 +372,7 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
             std::atomic<bool> exact_ok{true};
             for_faces(na, o.parallel, [&](int i) {
                 if (!exact_ok.load(std::memory_order_relaxed)) return;
-                const Tri& t = mesh.faces[active[i]];
+                const Tri& t = active_tris[i];
                 if (orientation_2d(trial[t[0]], trial[t[1]], trial[t[2]]) != sigma) exact_ok = false;
             });
             if (!exact_ok) {

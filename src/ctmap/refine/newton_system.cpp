@@ -7,12 +7,15 @@
 namespace ctmap {
 
 NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>& dof, int unknowns)
-    : faces_(faces), dof_(dof), K_(unknowns, unknowns), diag_(unknowns, -1) {
+    : K_(unknowns, unknowns), diag_(unknowns, -1) {
     const int nv = int(dof.size()), nf = int(faces.size());
     // The corners of each vertex with unknowns, faces ascending (a counting sort).
     std::vector<int> owner_of(nv, -1);
+    // In the unknowns' order: a column's neighbours in the loop are its neighbours in memory.
     for (int v = 0; v < nv; ++v)
-        if (dof[v].n > 0) owner_of[v] = int(owners_.size()), owners_.push_back(v);
+        if (dof[v].n > 0) owners_.push_back(v);
+    std::sort(owners_.begin(), owners_.end(), [&](int a, int b) { return dof[a].first < dof[b].first; });
+    for (int o = 0; o < int(owners_.size()); ++o) owner_of[owners_[o]] = o, owner_dof_.push_back(dof[owners_[o]]);
     const int no = int(owners_.size());
     corner_start_.assign(no + 1, 0);
     for (const Tri& t : faces)
@@ -35,6 +38,7 @@ NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>
         for (int j = 0; j < dof[owners_[o]].n; ++j) column_of[dof[owners_[o]].first + j] = o;
     std::vector<int> outer(unknowns + 1, 0), inner, firsts;
     rank_.assign(corner_.size() * 3, -1);
+    neighbour_.assign(corner_.size() * 3, -1);
     for (int c = 0; c < unknowns; ++c) {
         outer[c] = int(inner.size());
         const int o = column_of[c];
@@ -60,6 +64,7 @@ NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>
             for (int a = 0; a < 3; ++a) {
                 const Dof& dw = dof[faces[corner_[s] / 3][a]];
                 if (dw.n > 0 && dw.first <= dv.first)
+                    neighbour_[3 * s + a] = owner_of[faces[corner_[s] / 3][a]],
                     rank_[3 * s + a] = int(std::lower_bound(inner.begin() + outer[c], inner.end(), dw.first) -
                                            (inner.begin() + outer[c]));
             }
@@ -123,18 +128,17 @@ void NewtonSystem::assemble(const std::vector<FaceHessian>& local, bool hessian,
     double* value = K_.valuePtr();
     const int* outer = K_.outerIndexPtr();
     auto column = [&](int o) {
-        const Dof& dv = dof_[owners_[o]];
+        const Dof& dv = owner_dof_[o];
         for (int j = 0; j < dv.n; ++j) rhs[dv.first + j] = 0;
         if (hessian) std::fill(value + outer[dv.first], value + outer[dv.first + dv.n], 0.0);
         for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s) {
             const int f = corner_[s] / 3, b = corner_[s] % 3;
-            const Tri& t = faces_[f];
             const FaceHessian& h = local[f];
             if (hessian)
                 for (int a = 0; a < 3; ++a) {
                     const int r = rank_[3 * s + a];
                     if (r < 0) continue;
-                    const Dof& dw = dof_[t[a]];
+                    const Dof& dw = owner_dof_[neighbour_[3 * s + a]];
                     const Mat2 H = h.at(a, b);
                     if (dv.n == 2 && dw.n == 2) {  // free vertices: the block as it is
                         double* c0 = value + outer[dv.first] + r;

@@ -47,7 +47,7 @@ class NewtonSystem {
 public:
     /// The pattern of the system over `faces` (all of the mesh's faces, or the active ones of a
     /// local optimisation) in the unknowns `dof` numbers (0 .. `unknowns` - 1).
-    /// Keeps references to `faces` and `dof`, which must outlive it and not change.
+    /// Keeps copies of what it needs (the unknowns per vertex, each corner's neighbours).
     /// \pre every vertex of `faces` has an entry in `dof`; the unknowns are numbered without gaps,
     /// a vertex's unknowns consecutive.
     NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>& dof, int unknowns);
@@ -63,15 +63,15 @@ public:
     void assemble(const std::vector<FaceHessian>& local, bool hessian, Eigen::VectorXd& rhs, bool parallel);
 
 private:
-    const std::vector<Tri>& faces_;
-    const std::vector<Dof>& dof_;
     Eigen::SparseMatrix<double> K_;
     std::vector<int> diag_;
-    std::vector<int> owners_;          // the vertices with unknowns
+    std::vector<int> owners_;          // the vertices with unknowns, in the unknowns' order
+    std::vector<Dof> owner_dof_;       // their unknowns, in the same order
     std::vector<int> corner_start_;    // per owner: its range in corner_
     std::vector<int> corner_;          // 3 f + k: the owner is corner k of face f, faces ascending
     std::vector<int> rank_;            // per (corner s, a): row dof[t[a]].first's rank in the owner's
                                        // columns, -1 when that block is not in the upper triangle
+    std::vector<int> neighbour_;       // per (corner s, a): the owner index of t[a] where rank_ is set
 };
 
 }  // namespace ctmap
