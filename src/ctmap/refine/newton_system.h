@@ -45,8 +45,9 @@ void face_gradient(const FaceFrame& F, const FaceNewton& L, double weight, Vec2 
 
 class NewtonSystem {
 public:
-    /// The pattern of the system over `faces` (all of the mesh's faces, or the active ones of a
-    /// local optimisation) in the unknowns `dof` numbers (0 .. `unknowns` - 1).
+    /// The pattern of the system over `faces` (the optimiser's active faces, in its order: best
+    /// in the unknowns' order, for the assembly reads their shares in it) in the unknowns `dof`
+    /// numbers (0 .. `unknowns` - 1).
     /// Keeps copies of what it needs (the unknowns per vertex, each corner's neighbours).
     /// \pre every vertex of `faces` has an entry in `dof`; the unknowns are numbered without gaps,
     /// a vertex's unknowns consecutive.
