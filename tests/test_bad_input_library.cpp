@@ -9,6 +9,7 @@
 #include "ctmap/errors.h"
 #include "ctmap/io/atomic_file.h"
 #include "ctmap/io/features.h"
+#include "ctmap/io/glb_io.h"
 #include "ctmap/io/image.h"
 #include "ctmap/io/mesh_topology.h"
 #include "ctmap/io/obj_io.h"
@@ -97,6 +98,56 @@ TEST(BadInputLibrary, FeaturesImagesObjAndOutputsThrowBadInput) {
 
     std::filesystem::create_directory(d / "taken");
     EXPECT_NE(expect_throws<BadInput>([&] { AtomicFile a(d / "taken"); }).problem().find("folder"), std::string::npos);
+}
+
+/// A GLB: the 12-byte header with `length`, a JSON chunk holding `json` (padded to 4 bytes), then
+/// `tail` as it is (a BIN chunk's header and data, or part of one).
+std::string glb_bytes(const std::string& json, const std::string& tail, long length_delta = 0) {
+    auto word = [](std::uint32_t v) {
+        std::string w(4, '\0');
+        for (int k = 0; k < 4; ++k) w[k] = char((v >> (8 * k)) & 0xff);
+        return w;
+    };
+    std::string j = json;
+    while (j.size() % 4) j += ' ';
+    const std::uint32_t length = std::uint32_t(long(12 + 8 + j.size() + tail.size()) + length_delta);
+    return "glTF" + word(2) + word(length) + word(std::uint32_t(j.size())) + "JSON" + j + tail;
+}
+
+TEST(BadInputLibrary, AGlbWhoseChunksRunPastItsEndIsRefusedBeforeItIsParsed) {
+    // fuzz/regressions/fuzz_glb/fuzz_glb-2: a BIN chunk that claims up to 8 bytes more than the
+    // file holds was read past the end of the buffer by tinygltf 2.7.0 (its bound leaves out the
+    // chunk's own header). Each layout here must be a BadInput naming the file and the chunk.
+    TempDir d;
+    const std::string json = R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":8}]})";
+    auto word = [](std::uint32_t v) {
+        std::string w(4, '\0');
+        for (int k = 0; k < 4; ++k) w[k] = char((v >> (8 * k)) & 0xff);
+        return w;
+    };
+    const struct {
+        const char* name;
+        std::string bytes;
+        const char* says;
+    } cases[] = {
+        {"bin4.glb", glb_bytes(json, word(8) + "BIN" + std::string(1, '\0') + std::string(4, 'x')), "BIN chunk runs past"},
+        {"bin1.glb", glb_bytes(json, word(8) + "BIN" + std::string(1, '\0') + std::string(7, 'x')), "BIN chunk runs past"},
+        {"head.glb", glb_bytes(json, word(8)), "BIN chunk header runs past"},
+        {"long.glb", glb_bytes(json, "", 4), "the file has"},
+        {"json.glb", "glTF" + word(2) + word(24) + word(64) + "JSON" + "{}  ", "JSON chunk runs past"},
+        {"v1.glb", "glTF" + word(1) + word(24) + word(4) + "JSON" + "{}  ", "version 1"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        write_file(d / c.name, c.bytes);
+        const BadInput e = expect_throws<BadInput>([&] { read_glb(d / c.name); });
+        EXPECT_EQ(e.file(), d / c.name);
+        EXPECT_NE(e.problem().find(c.says), std::string::npos) << e.problem();
+    }
+    // The same layout with the chunk whole is past the container check (and then has no mesh).
+    write_file(d / "whole.glb", glb_bytes(json, word(8) + "BIN" + std::string(1, '\0') + std::string(8, 'x')));
+    const BadInput whole = expect_throws<BadInput>([&] { read_glb(d / "whole.glb"); });
+    EXPECT_NE(whole.problem().find("no mesh"), std::string::npos) << whole.problem();
 }
 
 TEST(BadInputLibrary, OutputSetIsAllOrNothing) {

@@ -12,6 +12,7 @@
 #include <map>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/glb_container.h"
 #include "ctmap/io/image.h"
 #include "ctmap/io/input_file.h"
 #include "ctmap/io/vertex_normals.h"
@@ -413,8 +414,17 @@ TexturedMesh read_glb(const std::string& path, GlbTexture* texture) {
         return false;
     };
     gltf.SetFsCallbacks(fs);
-    const bool ok = has_glb_extension(path) ? gltf.LoadBinaryFromFile(&m, &err, &warn, path)
-                                            : gltf.LoadASCIIFromFile(&m, &err, &warn, path);
+    bool ok = false;
+    if (has_glb_extension(path)) {
+        // Read once, the container checked (glb_container.h), then parsed from memory.
+        const std::string bytes = read_input_file(path, "glTF file");
+        check_glb_container(bytes, path);
+        ok = gltf.LoadBinaryFromMemory(&m, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                       static_cast<unsigned int>(bytes.size()),
+                                       std::filesystem::path(path).parent_path().string());
+    } else {
+        ok = gltf.LoadASCIIFromFile(&m, &err, &warn, path);
+    }
     if (!ok) throw BadInput(path, "not a readable glTF file: " + err);
     if (m.meshes.empty() || m.meshes[0].primitives.empty()) throw BadInput(path, "no mesh in the glTF file");
     // Every primitive of the first mesh, primitive k as chart k (ctmap writes one per chart,
