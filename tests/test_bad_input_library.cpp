@@ -100,14 +100,16 @@ TEST(BadInputLibrary, FeaturesImagesObjAndOutputsThrowBadInput) {
     EXPECT_NE(expect_throws<BadInput>([&] { AtomicFile a(d / "taken"); }).problem().find("folder"), std::string::npos);
 }
 
-/// A GLB: the 12-byte header with `length`, a JSON chunk holding `json` (padded to 4 bytes), then
-/// `tail` as it is (a BIN chunk's header and data, or part of one).
+/// `v` as a GLB stores it: 4 bytes, little-endian.
+std::string word(std::uint32_t v) {
+    std::string w(4, '\0');
+    for (int k = 0; k < 4; ++k) w[k] = char((v >> (8 * k)) & 0xff);
+    return w;
+}
+
+/// A GLB: the 12-byte header with its length (plus `length_delta`), a JSON chunk holding `json`
+/// (padded to 4 bytes), then `tail` as it is (a BIN chunk's header and data, or part of one).
 std::string glb_bytes(const std::string& json, const std::string& tail, long length_delta = 0) {
-    auto word = [](std::uint32_t v) {
-        std::string w(4, '\0');
-        for (int k = 0; k < 4; ++k) w[k] = char((v >> (8 * k)) & 0xff);
-        return w;
-    };
     std::string j = json;
     while (j.size() % 4) j += ' ';
     const std::uint32_t length = std::uint32_t(long(12 + 8 + j.size() + tail.size()) + length_delta);
@@ -120,11 +122,6 @@ TEST(BadInputLibrary, AGlbWhoseChunksRunPastItsEndIsRefusedBeforeItIsParsed) {
     // chunk's own header). Each layout here must be a BadInput naming the file and the chunk.
     TempDir d;
     const std::string json = R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":8}]})";
-    auto word = [](std::uint32_t v) {
-        std::string w(4, '\0');
-        for (int k = 0; k < 4; ++k) w[k] = char((v >> (8 * k)) & 0xff);
-        return w;
-    };
     const struct {
         const char* name;
         std::string bytes;
