@@ -10,8 +10,8 @@
 namespace ctmap {
 
 /// Checks the GLB layout of `bytes` (the file `path`, under 4 GiB): a 12-byte header ("glTF",
-/// version 2, a total length no larger than the file), a JSON chunk, and, where the total length leaves room for
-/// one, a BIN chunk whose header and data both end within that length.
+/// version 2, a total length no larger than the file), a JSON chunk, and, where the total length
+/// leaves room for one, a BIN chunk whose header and data both end within that length.
 /// \throw BadInput naming `path` and what is wrong.
 void check_glb_container(const std::string& bytes, const std::string& path);
 

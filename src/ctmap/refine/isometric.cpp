@@ -123,12 +123,12 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
         frame[f] = face_frame(k * mesh.positions[t[0]], k * mesh.positions[t[1]], k * mesh.positions[t[2]], sigma < 0);
         area_sum += frame[f].area;
     }
-    auto face_energy = [&](int f, const std::vector<Vec2>& x) {
-        const FaceFrame& F = frame[f];
+    // A face's term of the energy (before the division by the total area).
+    auto face_term = [](const FaceFrame& F, const Tri& t, const std::vector<Vec2>& x) {
         if (F.area == 0) return 0.0;
-        const Tri& t = mesh.faces[f];
         return F.area * symmetric_dirichlet_density(face_jacobian(F, x[t[0]], x[t[1]], x[t[2]]));
     };
+    auto face_energy = [&](int f, const std::vector<Vec2>& x) { return face_term(frame[f], mesh.faces[f], x); };
     // The held faces' share, once (0 when every face is active: the same bits as a plain sum).
     double held_energy = 0;
     if (local_only) {
@@ -139,12 +139,9 @@ IsometricStats optimise_isometric(const TriMesh& mesh, std::vector<Vec2>& uv, co
     // The active faces' frames and corners in the order of `active` (set below, with the unknowns).
     std::vector<FaceFrame> active_frame;
     auto energy_of = [&](const std::vector<Vec2>& x) {
-        return (held_energy + chunked_sum(na, o.parallel, [&](int i) {
-                    const FaceFrame& F = active_frame[i];
-                    if (F.area == 0) return 0.0;
-                    const Tri& t = active_tris[i];
-                    return F.area * symmetric_dirichlet_density(face_jacobian(F, x[t[0]], x[t[1]], x[t[2]]));
-                })) / area_sum;
+        return (held_energy +
+                chunked_sum(na, o.parallel, [&](int i) { return face_term(active_frame[i], active_tris[i], x); })) /
+               area_sum;
     };
 
     // Unknowns per vertex.

@@ -12,11 +12,12 @@ NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>
     // The corners of each vertex with unknowns, faces ascending (a counting sort).
     std::vector<int> owner_of(nv, -1);
     // In the unknowns' order: a column's neighbours in the loop are its neighbours in memory.
+    std::vector<int> owners;  // the vertices with unknowns
     for (int v = 0; v < nv; ++v)
-        if (dof[v].n > 0) owners_.push_back(v);
-    std::sort(owners_.begin(), owners_.end(), [&](int a, int b) { return dof[a].first < dof[b].first; });
-    for (int o = 0; o < int(owners_.size()); ++o) owner_of[owners_[o]] = o, owner_dof_.push_back(dof[owners_[o]]);
-    const int no = int(owners_.size());
+        if (dof[v].n > 0) owners.push_back(v);
+    std::sort(owners.begin(), owners.end(), [&](int a, int b) { return dof[a].first < dof[b].first; });
+    for (int o = 0; o < int(owners.size()); ++o) owner_of[owners[o]] = o, owner_dof_.push_back(dof[owners[o]]);
+    const int no = int(owners.size());
     corner_start_.assign(no + 1, 0);
     for (const Tri& t : faces)
         for (int v : t)
@@ -35,14 +36,14 @@ NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>
     // rank of a block (w, v) is where w's first row sits in v's columns (the same in both).
     std::vector<int> column_of(unknowns, -1);  // owner of each unknown's column
     for (int o = 0; o < no; ++o)
-        for (int j = 0; j < dof[owners_[o]].n; ++j) column_of[dof[owners_[o]].first + j] = o;
+        for (int j = 0; j < owner_dof_[o].n; ++j) column_of[owner_dof_[o].first + j] = o;
     std::vector<int> outer(unknowns + 1, 0), inner, firsts;
     rank_.assign(corner_.size() * 3, -1);
     neighbour_.assign(corner_.size() * 3, -1);
     for (int c = 0; c < unknowns; ++c) {
         outer[c] = int(inner.size());
         const int o = column_of[c];
-        const Dof& dv = dof[owners_[o]];
+        const Dof& dv = owner_dof_[o];
         const int j = c - dv.first;
         if (j == 1) {  // the first column's rows and v's own second unknown
             inner.reserve(inner.size() + (outer[c] - outer[c - 1]) + 1);
@@ -57,7 +58,7 @@ NewtonSystem::NewtonSystem(const std::vector<Tri>& faces, const std::vector<Dof>
         std::sort(firsts.begin(), firsts.end());
         firsts.erase(std::unique(firsts.begin(), firsts.end()), firsts.end());
         for (int r : firsts) {
-            const int n = r == dv.first ? 1 : dof[owners_[column_of[r]]].n;  // v itself: only row c here
+            const int n = r == dv.first ? 1 : owner_dof_[column_of[r]].n;  // v itself: only row c here
             for (int i = 0; i < n; ++i) inner.push_back(r + i);
         }
         for (int s = corner_start_[o]; s < corner_start_[o + 1]; ++s)
@@ -158,7 +159,7 @@ void NewtonSystem::assemble(const std::vector<FaceHessian>& local, bool hessian,
             for (int j = 0; j < dv.n; ++j) rhs[dv.first + j] -= dv.column(j).dot(h.gradient[b]);
         }
     };
-    const int no = int(owners_.size());
+    const int no = int(owner_dof_.size());
     if (parallel) tbb::parallel_for(0, no, column);
     else for (int o = 0; o < no; ++o) column(o);
 }

@@ -66,8 +66,7 @@ public:
 private:
     Eigen::SparseMatrix<double> K_;
     std::vector<int> diag_;
-    std::vector<int> owners_;          // the vertices with unknowns, in the unknowns' order
-    std::vector<Dof> owner_dof_;       // their unknowns, in the same order
+    std::vector<Dof> owner_dof_;       // per owner (a vertex with unknowns, in the unknowns' order)
     std::vector<int> corner_start_;    // per owner: its range in corner_
     std::vector<int> corner_;          // 3 f + k: the owner is corner k of face f, faces ascending
     std::vector<int> rank_;            // per (corner s, a): row dof[t[a]].first's rank in the owner's
