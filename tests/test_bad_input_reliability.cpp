@@ -181,6 +181,65 @@ TEST(BadInputReliability, DeclaredCountsAreCheckedAgainstTheFileSize) {
                    {"line 3", "'property' line before any 'element'"});
 }
 
+// Names, types and tokens of a corrupt mesh header are quoted in the message with every byte
+// outside printable ASCII shown as '?' and cut after 64 bytes: a terminal escape sequence in a
+// PLY element's name or an OFF keyword does not reach the user's terminal, nor does a megabyte
+// token. Each case reaches a different message of the PLY and OFF checks.
+TEST(BadInputReliability, HeaderNamesAreQuotedPrintableAndShort) {
+    TempDir d;
+    const std::string esc = "\x1b[2J";  // "clear the screen"
+    const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+    const std::string head = "ply\nformat ascii 1.0\n", bin = "ply\nformat binary_little_endian 1.0\n";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"count.ply", head + "element v" + esc + " 3000000000\n" + xyz + "end_header\n0 0 0\n"},
+        {"empty.ply", head + "element e" + esc + " 100000\nend_header\n"},
+        {"type.ply", head + "element vertex 3\nproperty fl" + esc + " x\nend_header\n0\n0\n0\n"},
+        {"list_type.ply", head + "element face 1\nproperty list uc" + esc + " int vertex_indices\nend_header\n3 0 1 2\n"},
+        {"list.ply", head + "element f" + esc + " 1\nproperty list uchar int idx\nend_header\n200 0 1 2\n"},
+        {"count_token.ply", head + "element f" + esc + " 1\nproperty list uchar int i" + esc + "\nend_header\n" +
+                                "1" + esc + " 0\n"},
+        {"binary.ply", bin + "element v" + esc + " 1000\n" + xyz + "end_header\n" + std::string(12, '\0')},
+        {"binary_list.ply", bin + "element f" + esc + " 2\nproperty list uchar int idx\nend_header\n\x01" + std::string(4, '\0')},
+        {"keyword.off", esc + "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+        {"number.off", "OFF\n3 1 0\n0 0 " + std::string(100000, 'x') + esc + "\n1 0 0\n0 1 0\n3 0 1 2\n"},
+    };
+    const std::map<std::string, std::string> expected = {
+        {"count.ply", "3000000000 v?[2J elements"},
+        {"empty.ply", "'e?[2J' elements with no properties"},
+        {"type.ply", "unknown property type 'fl?[2J'"},
+        {"list_type.ply", "unknown list types 'uc?[2J' 'int'"},
+        {"list.ply", "f?[2J 0 declares a list of 200 values"},
+        {"count_token.ply", "f?[2J 0: the count of its list 'i?[2J' is '1?[2J'"},
+        {"binary.ply", "1000 v?[2J elements"},
+        {"binary_list.ply", "truncated in f?[2J 1"},
+        {"keyword.off", "the keyword '?[2JOFF' is not supported"},
+        {"number.off", "'" + std::string(64, 'x') + "...' is not a number"},
+    };
+    for (const auto& [name, bytes] : cases) write_file(d / name, bytes);
+    for (const auto& [name, bytes] : cases) {
+        SCOPED_TRACE(name);
+        expect_refused(d, "info " + q(d / name), d / name, {expected.at(name)});
+        const RunResult r = run_bounded("info " + q(d / name));
+        for (char c : r.out) ASSERT_TRUE(c == '\n' || (c >= 0x20 && c <= 0x7e)) << "byte " << int(c) << " in " << r.out;
+        EXPECT_LT(r.out.size(), 1000u);
+    }
+}
+
+// A feature's name is any JSON string: one that holds a terminal escape sequence (two features
+// of that name) is quoted printable in the message too.
+TEST(BadInputReliability, FeatureNamesAreQuotedPrintable) {
+    TempDir d;
+    copy_example(d);
+    write_file(d / "esc.json", "{\"units\": \"uv\", \"features\": ["
+                               "{\"name\": \"\\u001b[2J\", \"vertex\": 0, \"image\": [0.2, 0.2]},"
+                               "{\"name\": \"\\u001b[2J\", \"vertex\": 8, \"image\": [0.8, 0.2]},"
+                               "{\"name\": \"c\", \"vertex\": 7, \"image\": [0.5, 0.8]}]}");
+    const std::string args = "validate " + q(d / "in.off") + " " + q(d / "esc.json");
+    expect_refused(d, args, d / "esc.json", {"the name '?[2J' is used by more than one feature"});
+    const RunResult r = run_bounded(args);
+    for (char c : r.out) ASSERT_TRUE(c == '\n' || (c >= 0x20 && c <= 0x7e)) << "byte " << int(c) << " in " << r.out;
+}
+
 /// An OFF file of one polygon with `n` corners at `corner(i)`.
 std::string polygon_off(int n, const std::function<Vec3(int)>& corner) {
     std::ostringstream os;

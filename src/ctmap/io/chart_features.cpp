@@ -9,13 +9,12 @@
 #include "ctmap/errors.h"
 #include "ctmap/io/input_file.h"
 #include "ctmap/io/json_document.h"
+#include "ctmap/io/printable.h"
 
 namespace ctmap {
 namespace {
 
 using json = nlohmann::json;
-
-std::string named(const std::string& s) { return "'" + s + "'"; }
 
 /// Where a feature is on the mesh, as the file gives it (a vertex or a point), for comparing.
 std::string place_of(const json& f) {
@@ -69,14 +68,14 @@ ChartFile parse_chart_features(const std::string& text, const std::string& path)
         if (!ch.contains("name") || !ch["name"].is_string() || ch["name"].get<std::string>().empty())
             problems.push_back(label + ": \"name\" must be a non-empty string");
         else if (!chart_names.insert(name_of[c] = ch["name"].get<std::string>()).second)
-            problems.push_back("the chart name " + named(name_of[c]) + " is used by more than one chart");
+            problems.push_back("the chart name " + quoted_name(name_of[c]) + " is used by more than one chart");
         else if (name_of[c].find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
                  std::string::npos)
-            problems.push_back("the chart name " + named(name_of[c]) +
+            problems.push_back("the chart name " + quoted_name(name_of[c]) +
                                " may hold only letters, digits, '_' and '-' (it names the chart's material in the OBJ)");
         if (name_of[c].empty()) name_of[c] = label;
         if (!ch.contains("features") || !ch["features"].is_array()) {
-            problems.push_back("chart " + named(name_of[c]) + ": \"features\" must be an array");
+            problems.push_back("chart " + quoted_name(name_of[c]) + ": \"features\" must be an array");
             continue;
         }
         for (const json& f : ch["features"]) {
@@ -85,8 +84,8 @@ ChartFile parse_chart_features(const std::string& text, const std::string& path)
             if (p.empty()) continue;
             auto [it, fresh] = place.emplace(name, std::make_pair(p, name_of[c]));
             if (!fresh && it->second.first != p)
-                problems.push_back("feature " + named(name) + " is at " + it->second.first + " in chart " +
-                                   named(it->second.second) + " but at " + p + " in chart " + named(name_of[c]) +
+                problems.push_back("feature " + quoted_name(name) + " is at " + it->second.first + " in chart " +
+                                   quoted_name(it->second.second) + " but at " + p + " in chart " + quoted_name(name_of[c]) +
                                    ": a feature is one place on the mesh in every chart");
         }
     }
@@ -106,7 +105,7 @@ ChartFile parse_chart_features(const std::string& text, const std::string& path)
             if (f.is_object() && f.contains("name") && f["name"].is_string() && place_of(f).empty()) {
                 const auto it = place.find(f["name"].get<std::string>());
                 if (it == place.end()) {
-                    problems.push_back("chart " + named(name_of[c]) + ": feature " + f["name"].dump() +
+                    problems.push_back("chart " + quoted_name(name_of[c]) + ": feature " + f["name"].dump() +
                                        " has no \"vertex\" or \"point\" in any chart");
                     continue;
                 }
@@ -126,34 +125,34 @@ ChartFile parse_chart_features(const std::string& text, const std::string& path)
         try {
             cf.features = parse_features(sub.dump(), path);
         } catch (const BadInput& e) {
-            problems.push_back("chart " + named(cf.name) + ": " + e.problem());
+            problems.push_back("chart " + quoted_name(cf.name) + ": " + e.problem());
             continue;
         }
         if (ch.contains("border")) {
             if (!ch["border"].is_array()) {
-                problems.push_back("chart " + named(cf.name) + ": \"border\" must be an array of feature names");
+                problems.push_back("chart " + quoted_name(cf.name) + ": \"border\" must be an array of feature names");
                 continue;
             }
             std::set<std::string> known, seen;
             for (const Feature& f : cf.features.features) known.insert(f.name);
             for (const json& b : ch["border"]) {
                 if (!b.is_string()) {
-                    problems.push_back("chart " + named(cf.name) + ": \"border\" holds " + b.dump() + ", not a feature name");
+                    problems.push_back("chart " + quoted_name(cf.name) + ": \"border\" holds " + b.dump() + ", not a feature name");
                     continue;
                 }
                 const std::string n = b.get<std::string>();
                 if (!known.count(n))
-                    problems.push_back("chart " + named(cf.name) + ": border feature " + named(n) +
+                    problems.push_back("chart " + quoted_name(cf.name) + ": border feature " + quoted_name(n) +
                                        " is not one of the chart's features");
                 else if (!seen.insert(n).second)
-                    problems.push_back("chart " + named(cf.name) + ": border feature " + named(n) + " is listed twice");
+                    problems.push_back("chart " + quoted_name(cf.name) + ": border feature " + quoted_name(n) + " is listed twice");
                 cf.border.push_back(n);
             }
             if (cf.border.size() < 3)
-                problems.push_back("chart " + named(cf.name) + ": \"border\" needs at least 3 features, has " +
+                problems.push_back("chart " + quoted_name(cf.name) + ": \"border\" needs at least 3 features, has " +
                                    std::to_string(cf.border.size()));
         } else if (charts.size() > 1) {
-            problems.push_back("chart " + named(cf.name) +
+            problems.push_back("chart " + quoted_name(cf.name) +
                                ": \"border\" is missing (only a file's one chart may be bounded by the mesh border)");
         }
         out.charts.push_back(std::move(cf));
@@ -170,7 +169,7 @@ std::vector<std::string> resolve_chart_images(ChartFile& cf, std::vector<std::ar
         try {
             images.push_back(resolve_feature_image(c.features, "", w, h));
         } catch (const BadInput& e) {
-            throw BadInput(cf.path, "chart " + named(c.name) + ": " + e.problem());
+            throw BadInput(cf.path, "chart " + quoted_name(c.name) + ": " + e.problem());
         }
         sizes.push_back({w, h});
     }

@@ -3,6 +3,7 @@
 #include "ctmap/io/image.h"
 #include "ctmap/io/input_file.h"
 #include "ctmap/io/json_document.h"
+#include "ctmap/io/printable.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -36,8 +37,6 @@ public:
 private:
     std::vector<std::string> list_;
 };
-
-std::string named(const std::string& s) { return "'" + s + "'"; }
 
 std::string short_number(double x) {
     std::ostringstream os;
@@ -115,7 +114,7 @@ FeatureSet parse_features(const std::string& text, const std::string& path) {
                 problems.add(label + ": \"name\" must be a non-empty string");
             else
                 feat.name = f["name"].get<std::string>();
-            const std::string who = feat.name.empty() ? label : "feature " + named(feat.name);
+            const std::string who = feat.name.empty() ? label : "feature " + quoted_name(feat.name);
 
             const bool has_vertex = f.contains("vertex"), has_point = f.contains("point");
             if (has_vertex == has_point)
@@ -149,26 +148,26 @@ FeatureSet parse_features(const std::string& text, const std::string& path) {
     std::map<std::pair<double, double>, std::string> points;
     std::map<std::array<double, 3>, std::string> surface_points;
     for (const Feature& f : out.features) {
-        if (++names[f.name] == 2) problems.add("the name " + named(f.name) + " is used by more than one feature");
+        if (++names[f.name] == 2) problems.add("the name " + quoted_name(f.name) + " is used by more than one feature");
         if (f.vertex >= 0) {
             auto [it, fresh] = vertices.emplace(f.vertex, f.name);
             if (!fresh)
-                problems.add("features " + named(it->second) + " and " + named(f.name) + " both use vertex " +
+                problems.add("features " + quoted_name(it->second) + " and " + quoted_name(f.name) + " both use vertex " +
                              std::to_string(f.vertex));
         } else if (f.point) {
             auto [it, fresh] = surface_points.emplace(std::array<double, 3>{f.point->x(), f.point->y(), f.point->z()}, f.name);
             if (!fresh)
-                problems.add("features " + named(it->second) + " and " + named(f.name) + " are the same 3D point");
+                problems.add("features " + quoted_name(it->second) + " and " + quoted_name(f.name) + " are the same 3D point");
         }
         auto [it, fresh] = points.emplace(std::make_pair(f.image.x(), f.image.y()), f.name);
         if (!fresh)
-            problems.add("features " + named(it->second) + " and " + named(f.name) + " have the same image point " +
+            problems.add("features " + quoted_name(it->second) + " and " + quoted_name(f.name) + " have the same image point " +
                          fmt(f.image));
     }
     if (out.units == "uv")
         for (const Feature& f : out.features)
             if (f.image.x() < 0 || f.image.x() > 1 || f.image.y() < 0 || f.image.y() > 1)
-                problems.add("feature " + named(f.name) + ": UV " + fmt(f.image) + " is outside [0, 1] x [0, 1]");
+                problems.add("feature " + quoted_name(f.name) + ": UV " + fmt(f.image) + " is outside [0, 1] x [0, 1]");
     problems.throw_if_any(path, "the features file is invalid:");
     return out;
 }
@@ -181,7 +180,7 @@ void resolve_units(FeatureSet& fs, int width, int height) {
     }
     for (const Feature& f : fs.features)
         if (!(f.image.x() >= 0 && f.image.x() <= width && f.image.y() >= 0 && f.image.y() <= height))
-            problems.add("feature " + named(f.name) + ": image point " + fmt(f.image) + " is outside the " +
+            problems.add("feature " + quoted_name(f.name) + ": image point " + fmt(f.image) + " is outside the " +
                          std::to_string(width) + " x " + std::to_string(height) + " image");
     problems.throw_if_any(fs.path, "features outside the image:");
 }
@@ -201,7 +200,7 @@ double check_features_on_mesh(const FeatureSet& fs, const TriMesh& mesh, const s
     double moved = 0;
     for (const Feature& f : fs.features) {
         if (f.vertex >= mesh.num_vertices())
-            problems.add("feature " + named(f.name) + " uses vertex " + std::to_string(f.vertex) + ", but " +
+            problems.add("feature " + quoted_name(f.name) + " uses vertex " + std::to_string(f.vertex) + ", but " +
                          mesh_file + " has only " + std::to_string(mesh.num_vertices()) + " vertices");
         if (!f.point) continue;
         const K::Point_3 q(f.point->x(), f.point->y(), f.point->z());
@@ -213,7 +212,7 @@ double check_features_on_mesh(const FeatureSet& fs, const TriMesh& mesh, const s
             best = std::min(best, CGAL::to_double(CGAL::squared_distance(q, tri)));
         }
         if (!(std::sqrt(best) <= tol))
-            problems.add("feature " + named(f.name) + ": its 3D point is " + short_number(std::sqrt(best)) +
+            problems.add("feature " + quoted_name(f.name) + ": its 3D point is " + short_number(std::sqrt(best)) +
                          " away from the surface of " + mesh_file + " (at most " + short_number(tol) +
                          " is accepted; --snap DIST sets the distance)");
         else
@@ -234,7 +233,7 @@ std::vector<int> feature_vertices_on_map(const FeatureSet& fs, const TriMesh& me
             for (int u = 0; u < mesh.num_vertices(); ++u)
                 if (const double d = (mesh.positions[u] - *f.point).norm(); d < best) best = d, v = u;
             if (!(best <= tolerance))
-                throw BadInput(fs.path, "feature " + named(f.name) + " is a 3D point with no vertex of " + map_file +
+                throw BadInput(fs.path, "feature " + quoted_name(f.name) + " is a 3D point with no vertex of " + map_file +
                                             " within " + short_number(tolerance) +
                                             " of it: was this map made from these features?");
         }

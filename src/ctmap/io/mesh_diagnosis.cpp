@@ -13,6 +13,7 @@
 #include "ctmap/errors.h"
 #include "ctmap/io/input_file.h"
 #include "ctmap/io/mesh_precheck.h"
+#include "ctmap/io/printable.h"
 
 namespace ctmap {
 namespace {
@@ -88,7 +89,7 @@ std::string number_problem(std::string_view tok) {
     if (!tok.empty() && tok[0] == '+') tok.remove_prefix(1);
     double v = 0;
     const auto [end, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-    const std::string quoted = "'" + std::string(tok) + "'";
+    const std::string quoted = "'" + printable(tok) + "'";
     if (ec == std::errc::result_out_of_range) return "the number " + quoted + " is out of the range of a double";
     if (ec != std::errc() || end != tok.data() + tok.size()) return quoted + " is not a number";
     if (!std::isfinite(v)) return "the coordinate " + quoted + " is not finite (NaN or infinity)";
@@ -100,7 +101,7 @@ std::string index_problem(std::string_view tok, long long count, const std::stri
     long long i = 0;
     const auto [end, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), i);
     if (ec != std::errc() || end != tok.data() + tok.size() || i < 0)
-        return who + ": '" + std::string(tok) + "' is not a vertex index";
+        return who + ": '" + printable(tok) + "' is not a vertex index";
     if (i >= count)
         return who + " uses vertex " + std::to_string(i) + ", which is out of range (the file has " +
                std::to_string(count) + " vertices)";
@@ -123,7 +124,7 @@ std::string counted_face_problem(const Line& l, long long index, long long num_v
     const std::string_view t = l.tokens[0];
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), n);
     if (ec != std::errc() || end != t.data() + t.size() || n < 0)
-        return who + ": '" + std::string(t) + "' is not a corner count";
+        return who + ": '" + printable(t) + "' is not a corner count";
     if (n < 3) return who + " has " + std::to_string(n) + " corners; a face needs at least 3";
     if ((long long)l.tokens.size() < n + 1) return who + " lists fewer than " + std::to_string(n) + " vertex indices";
     for (long long k = 1; k <= n; ++k)
@@ -159,7 +160,7 @@ std::string diagnose_off(std::string_view text) {
     const std::vector<Line> lines = text_lines(text, '#');
     if (lines.empty() || !ends_with(lines[0].tokens[0], "OFF"))
         return "the file does not start with an OFF header (found '" +
-               (lines.empty() ? std::string() : std::string(lines[0].tokens[0])) + "')";
+               (lines.empty() ? std::string() : printable(lines[0].tokens[0])) + "')";
     if (lines[0].tokens.size() > 1 && lines[0].tokens[1] == "BINARY") return {};
     std::size_t body = 0;
     long long nv = 0, nf = 0;
@@ -187,7 +188,7 @@ std::string obj_face_problem(const Line& l, long long face, long long vertices_s
         long long i = 0;
         const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), i);
         if (ec != std::errc() || end != t.data() + t.size() || i == 0)
-            return who + ": '" + std::string(l.tokens[k]) + "' is not a vertex index";
+            return who + ": '" + printable(l.tokens[k]) + "' is not a vertex index";
         const long long resolved = i > 0 ? i : vertices_so_far + i + 1;  // negative: relative
         if (resolved < 1 || resolved > num_vertices)
             return who + " uses vertex " + std::to_string(i) + ", which is out of range (the file has " +
@@ -263,7 +264,7 @@ std::string diagnose_ply_ascii(const std::vector<PlyElement>& elements, std::str
     for (const PlyElement& e : elements) {
         if (e.name == "vertex") nv = e.count;
         for (long long i = 0; i < e.count; ++i) {
-            if (at >= lines.size()) return truncated(e.count, (e.name + " elements").c_str(), i);
+            if (at >= lines.size()) return truncated(e.count, (printable(e.name) + " elements").c_str(), i);
             const Line& l = lines[at++];
             std::string p = e.name == "vertex" ? vertex_problem(l, 0, 3, i)
                             : e.name == "face" ? counted_face_problem(l, i, nv)

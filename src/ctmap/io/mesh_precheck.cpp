@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/printable.h"
 
 namespace ctmap {
 namespace {
@@ -41,15 +42,6 @@ struct Tokens {
     }
     std::size_t left() const { return text.size() - at; }
 };
-
-/// `s` with every byte outside printable ASCII shown as '?' (names and tokens of a corrupt file
-/// quoted in a message).
-std::string printable(std::string_view s) {
-    std::string out(s);
-    for (char& c : out)
-        if (c < 0x20 || c > 0x7e) c = '?';
-    return out;
-}
 
 bool as_count(std::string_view t, long long& v) {
     if (!t.empty() && t[0] == '+') t.remove_prefix(1);
@@ -131,7 +123,7 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
             PlyElement e;
             if (!t.next(a) || !t.next(b) || !as_count(b, e.count))
                 refuse(path, at + "an element needs a name and a non-negative integer count");
-            e.name = std::string(a);
+            e.name = printable(a);  // names are only quoted in messages
             elements.push_back(e);
         } else if (kw == "property") {
             if (elements.empty()) refuse(path, at + "a 'property' line before any 'element' line");
@@ -142,14 +134,14 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
                 p.list = true;
                 p.count_bytes = ply_type_bytes(b);
                 p.value_bytes = ply_type_bytes(c);
-                p.name = std::string(d);
+                p.name = printable(d);
                 if (p.count_bytes == 0 || p.count_bytes == 8 || p.value_bytes == 0)
-                    refuse(path, at + "unknown list types '" + std::string(b) + "' '" + std::string(c) + "'");
+                    refuse(path, at + "unknown list types '" + printable(b) + "' '" + printable(c) + "'");
             } else {
                 p.value_bytes = ply_type_bytes(a);
                 if (!t.next(b)) refuse(path, at + "a property needs a type and a name");
-                p.name = std::string(b);
-                if (p.value_bytes == 0) refuse(path, at + "unknown property type '" + std::string(a) + "'");
+                p.name = printable(b);
+                if (p.value_bytes == 0) refuse(path, at + "unknown property type '" + printable(a) + "'");
             }
             elements.back().properties.push_back(p);
         }
@@ -181,9 +173,9 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
                     // CGAL reads the count as its integer type: "-1.3" became 4294967295 values
                     // and 2 GB allocated (a fuzz input). A count is a non-negative integer.
                     if (!as_count(tok, n))
-                        refuse(path, "not a valid ply file: " + printable(e.name) + " " + std::to_string(i) +
-                                         ": the count of its list '" + printable(p.name) + "' is '" +
-                                         printable(tok.substr(0, 32)) + "', not a non-negative integer");
+                        refuse(path, "not a valid ply file: " + e.name + " " + std::to_string(i) +
+                                         ": the count of its list '" + p.name + "' is '" +
+                                         printable(tok) + "', not a non-negative integer");
                     if ((long double)n * 2 > (long double)t.left() + 2)
                         refuse(path, "not a valid ply file: " + e.name + " " + std::to_string(i) + " declares a list of " +
                                          std::to_string(n) + " values, more than the file holds");
@@ -274,9 +266,9 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
     // two readings disagree (UBSan in CGAL on a fuzz input), so a glued comment is refused.
     if (const char* end = kw.data() + kw.size(); end < bytes.data() + bytes.size() && *end == '#')
         refuse(path, "not a valid off file: line " + std::to_string(line_no) +
-                         ": a comment must be separated from the keyword '" + std::string(kw) + "' by a space");
+                         ": a comment must be separated from the keyword '" + printable(kw) + "' by a space");
     if (kw.size() < 3 || kw.substr(kw.size() - 3) != "OFF")  // CGAL's scanner reads "COFF!4" as COFF
-        refuse(path, "not a valid off file: the first word '" + std::string(kw) +
+        refuse(path, "not a valid off file: the first word '" + printable(kw) +
                          "' is not an OFF keyword ([ST][C][N][4]OFF)");
     if (head.next(a) && a == "BINARY") return;  // check_off_counts bounds the binary form
     // The counts, on the keyword's line or the next: three integers and nothing else (CGAL reads
@@ -289,12 +281,12 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
             if (!as_count(tok, v) || ++n > 3)
                 refuse(path, "not a valid off file: line " + std::to_string(line_no) +
                                  ": the header's counts must be three non-negative integers, found '" +
-                                 std::string(tok) + "'");
+                                 printable(tok) + "'");
             // CGAL doubles the edge count (ctmap ignores it) in an int: over 2^30 is signed overflow
             // (UBSan, a fuzz finding); no mesh a file can hold has that many edges.
             if (n == 3 && v > (1LL << 30))
                 refuse(path, "not a valid off file: line " + std::to_string(line_no) + ": the header declares " +
-                                 std::string(tok) + " edges, more than any mesh ctmap reads (at most 2^30)");
+                                 printable(tok) + " edges, more than any mesh ctmap reads (at most 2^30)");
         } while (t.next(tok));
         // Three: with two, CGAL takes the first number of the next line as the edge count.
         if (n < 3)
@@ -304,7 +296,7 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
     if (!a.empty()) check_counts_line(head, a);
     const auto [textures, colours, normals, homogeneous, known] = parse_off_keyword(kw);
     if (!known)
-        refuse(path, "not a valid off file: the keyword '" + std::string(kw) +
+        refuse(path, "not a valid off file: the keyword '" + printable(kw) +
                          "' is not supported (ctmap reads [ST][C][N][4]OFF, text or BINARY)");
     const int H = homogeneous ? 1 : 0;
     long long nv = 0, nf = 0;
@@ -334,7 +326,7 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
             const auto [end, ec] = std::from_chars(num.data(), num.data() + num.size(), v);
             if (ec != std::errc() || end != num.data() + num.size() || !std::isfinite(v))
                 refuse(path, "not a valid off file: line " + std::to_string(line_no) + ": " + who + ": '" +
-                                 std::string(tok) + "' is not a finite number");
+                                 printable(tok) + "' is not a finite number");
             entries.push_back(v);
         }
     };
@@ -368,7 +360,7 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
         read_entries(who);
         const long long coords = 3 + H, need = coords + (normals ? 3 + H : 0) + (textures ? 2 + H : 0);
         if ((long long)entries.size() < need)
-            refuse(path, at(who) + " has " + std::to_string(entries.size()) + " numbers; the " + std::string(kw) +
+            refuse(path, at(who) + " has " + std::to_string(entries.size()) + " numbers; the " + printable(kw) +
                              " header asks for at least " + std::to_string(need));
         if (colours) check_colour(coords + (normals ? 3 + H : 0), (long long)entries.size() - need, who, 0);
     }
