@@ -2,9 +2,13 @@
 // Shared by the picture tests (test_render.cpp, test_render_cli.cpp): the test's own palette and
 // pixel helpers, the example map of nefertiti, a texture of colour blobs at the features' image
 // points, and which feature vertices the renderer's camera sees.
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "ctmap/io/features.h"
@@ -28,7 +32,7 @@ inline std::vector<Rgb> palette() {
                 if (!(r == 128 && g == 128 && b == 128)) p.push_back({r, g, b});
     return p;
 }
-constexpr Rgb kGrey{128, 128, 128};
+inline constexpr Rgb kGrey{128, 128, 128};
 
 inline Rgb pixel(const Image& img, int x, int y) {
     const std::uint8_t* p = &img.pixels[(std::size_t(y) * img.width + x) * img.channels];

@@ -238,6 +238,23 @@ TEST(BadInputReliability, FeatureNamesAreQuotedPrintable) {
     expect_refused(d, args, d / "esc.json", {"the name '?[2J' is used by more than one feature"});
     const RunResult r = run_bounded(args);
     for (char c : r.out) ASSERT_TRUE(c == '\n' || (c >= 0x20 && c <= 0x7e)) << "byte " << int(c) << " in " << r.out;
+    // Valid UTF-8 stays readable.
+    write_file(d / "utf8.json", "{\"units\": \"uv\", \"features\": ["
+                                "{\"name\": \"\u0153il\", \"vertex\": 0, \"image\": [0.2, 0.2]},"
+                                "{\"name\": \"\u0153il\", \"vertex\": 8, \"image\": [0.8, 0.2]},"
+                                "{\"name\": \"c\", \"vertex\": 7, \"image\": [0.5, 0.8]}]}");
+    expect_refused(d, "validate " + q(d / "in.off") + " " + q(d / "utf8.json"), d / "utf8.json",
+                   {"the name '\xc5\x93il' is used by more than one feature"});
+    // A file name from the features file (its image) is printed through the same filter: the
+    // command line's last word on every message.
+    write_file(d / "image.json", "{\"image\": \"\\u001b[2J.png\", \"features\": ["
+                                 "{\"name\": \"a\", \"vertex\": 0, \"image\": [20, 20]},"
+                                 "{\"name\": \"b\", \"vertex\": 8, \"image\": [80, 20]},"
+                                 "{\"name\": \"c\", \"vertex\": 7, \"image\": [50, 80]}]}");
+    const RunResult ri = run_bounded("validate " + q(d / "in.off") + " " + q(d / "image.json"));
+    EXPECT_EQ(ri.code, kExitBadInput) << ri.out;
+    EXPECT_NE(ri.out.find("?[2J.png"), std::string::npos) << ri.out;
+    for (char c : ri.out) ASSERT_TRUE(c == '\n' || (c >= 0x20 && c <= 0x7e)) << "byte " << int(c) << " in " << ri.out;
 }
 
 /// An OFF file of one polygon with `n` corners at `corner(i)`.

@@ -10,11 +10,8 @@
 
 #include "ctmap/io/features.h"
 #include "ctmap/io/image.h"
-#include "ctmap/io/obj_io.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
-#include "ctmap/render/gallery.h"
-#include "ctmap/render/render_inputs.h"
 #include "ctmap/render/render_map.h"
 #include "test_support.h"
 #include "render_support.h"

@@ -2,9 +2,7 @@
 // camera puts the feature vertex and refuses bad input; the demo's gallery shows its five pictures.
 // (The renderer itself: test_render.cpp.)
 #include <cmath>
-#include <limits>
-#include <map>
-#include <tuple>
+#include <filesystem>
 
 #include "ctmap/io/features.h"
 #include "ctmap/io/image.h"

@@ -11,6 +11,7 @@
 #include "ctmap/certify/certificate.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/atomic_file.h"
+#include "ctmap/io/printable.h"
 #include "ctmap/io/data_path.h"
 #include "ctmap/io/chart_features.h"
 #include "ctmap/io/features.h"
@@ -154,7 +155,7 @@ int cmd_check(const std::string& obj_path, const std::string& features_path, con
                   << fv.size() << " features" << (c.mirrored ? ", mirrored" : "") << ")\n"
                   << "  flipped " << c.flipped << ", degenerate " << c.degenerate << ", feature error "
                   << c.feature_max_error
-                  << (c.worst_feature >= 0 ? " (feature \"" + fs.features[c.worst_feature].name + "\")" : "")
+                  << (c.worst_feature >= 0 ? " (feature \"" + printable(fs.features[c.worst_feature].name) + "\")" : "")
                   << ", border " << (c.border_simple ? "simple" : "NOT simple (" + std::to_string(c.border_crossings) + " crossings)")
                   << "\n"
                   << "  distortion: symmetric Dirichlet " << d.symmetric_dirichlet << ", conformal mean "
@@ -276,7 +277,7 @@ int run(int argc, char** argv) {
                 if (const std::size_t d = edit_distance(given, n); d < best_d) best_d = d, best = n;
             std::string list;
             for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-            std::cerr << "ctmap: error: unknown command '" << given << "'"
+            std::cerr << "ctmap: error: unknown command " << quoted_name(given)
                       << (best.empty() ? std::string() : "; did you mean '" + best + "'?") << " (commands: " << list
                       << "; ctmap --help)\n";
             return kExitBadInput;
@@ -304,16 +305,16 @@ int main(int argc, char** argv) {
     try {
         return run(argc, argv);
     } catch (const ctmap::BadInput& e) {
-        std::cerr << "ctmap: error: " << e.what() << "\n";
+        std::cerr << "ctmap: error: " << ctmap::terminal_text(e.what()) << "\n";
         return ctmap::kExitBadInput;
     } catch (const ctmap::InternalError& e) {
-        std::cerr << "ctmap: internal failure: " << e.what() << "\n";
+        std::cerr << "ctmap: internal failure: " << ctmap::terminal_text(e.what()) << "\n";
         return ctmap::kExitInternal;
     } catch (const std::bad_alloc&) {
         std::cerr << "ctmap: internal failure: out of memory\n";
         return ctmap::kExitInternal;
     } catch (const std::exception& e) {
-        std::cerr << "ctmap: internal failure: " << e.what() << "\n";
+        std::cerr << "ctmap: internal failure: " << ctmap::terminal_text(e.what()) << "\n";
         return ctmap::kExitInternal;
     }
 }

@@ -10,11 +10,10 @@
 #include "ctmap/cut/work_mesh.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/mesh_topology.h"
+#include "ctmap/io/printable.h"
 
 namespace ctmap {
 namespace {
-
-std::string named(const std::string& s) { return "'" + s + "'"; }
 
 std::uint64_t directed_key(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
 
@@ -112,11 +111,11 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
     const int nv = mesh.num_vertices(), nf = mesh.num_faces();
     for (const ChartOutline& c : charts) {
         if (c.border.size() < 3)
-            throw BadInput("", "chart " + named(c.name) + ": its border needs at least 3 features");
+            throw BadInput("", "chart " + quoted_name(c.name) + ": its border needs at least 3 features");
         for (int v : c.border)
-            if (v < 0 || v >= nv) throw BadInput("", "chart " + named(c.name) + ": border vertex out of range");
+            if (v < 0 || v >= nv) throw BadInput("", "chart " + quoted_name(c.name) + ": border vertex out of range");
         for (int v : c.interior)
-            if (v < 0 || v >= nv) throw BadInput("", "chart " + named(c.name) + ": feature vertex out of range");
+            if (v < 0 || v >= nv) throw BadInput("", "chart " + quoted_name(c.name) + ": feature vertex out of range");
     }
     // Two charts with the same border features (two sides of a closed mesh) go round them in
     // one cyclic order, in either direction.
@@ -133,7 +132,7 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
                 std::string list_x, list_y;
                 for (const auto& n : x) list_x += (list_x.empty() ? "" : ", ") + n;
                 for (const auto& n : y) list_y += (list_y.empty() ? "" : ", ") + n;
-                throw BadInput("", "charts " + named(charts[j].name) + " and " + named(charts[i].name) +
+                throw BadInput("", "charts " + quoted_name(charts[j].name) + " and " + quoted_name(charts[i].name) +
                                        " go round their common border features in different orders (" + list_y +
                                        " against " + list_x + "): a seam is one line on the mesh, so list them in "
                                        "one cyclic order (either direction)");
@@ -148,8 +147,8 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
     for (const ChartOutline& c : charts)
         for (std::size_t i = 0; i < c.interior.size(); ++i)
             if (const auto it = border_of.find(c.interior[i]); it != border_of.end())
-                throw BadInput("", "feature " + named(c.interior_names[i]) + " is inside chart " + named(c.name) +
-                                       " but on the border of chart " + named(it->second.second) +
+                throw BadInput("", "feature " + quoted_name(c.interior_names[i]) + " is inside chart " + quoted_name(c.name) +
+                                       " but on the border of chart " + quoted_name(it->second.second) +
                                        ": a feature on a seam is a border feature of every chart it is in");
     const Adjacency adj(mesh);
     std::vector<char> blocked(nv, 0);
@@ -175,9 +174,9 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
                 if (adj.on_border[a] && adj.on_border[b]) path = border_arc(mesh, adj, a, b, blocked);
                 if (path.empty()) path = shortest_path(mesh, adj, a, b, blocked, seam_edges);
                 if (path.empty())
-                    throw BadInput("", "chart " + named(ch.name) + ": no seam joins its border features " +
-                                           named(ch.border_names[i]) + " and " +
-                                           named(ch.border_names[(i + 1) % ch.border.size()]) +
+                    throw BadInput("", "chart " + quoted_name(ch.name) + ": no seam joins its border features " +
+                                           quoted_name(ch.border_names[i]) + " and " +
+                                           quoted_name(ch.border_names[(i + 1) % ch.border.size()]) +
                                            " without touching another feature or seam (move one, or list the border "
                                            "in another order)");
                 for (std::size_t k = 1; k + 1 < path.size(); ++k) blocked[path[k]] = 1;
@@ -230,27 +229,27 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
         const int left = adj.left(loop[0], loop[1]), right = adj.left(loop[1], loop[0]);
         const int left_side = left >= 0 ? component[left] : -1, right_side = right >= 0 ? component[right] : -1;
         if (left_side >= 0 && left_side == right_side)
-            throw BadInput("", "chart " + named(ch.name) + ": its border does not cut the mesh in two (a handle of the "
+            throw BadInput("", "chart " + quoted_name(ch.name) + ": its border does not cut the mesh in two (a handle of the "
                                    "mesh passes through it), so its region is not a disc: put the border round a "
                                    "disc of the mesh");
         std::set<int> sides;
         for (int v : ch.interior) sides.insert(component[a_face[v]]);  // v is on no seam: its faces are one side
         if (sides.size() > 1)
-            throw BadInput("", "chart " + named(ch.name) + ": its interior features lie on both sides of its border "
+            throw BadInput("", "chart " + quoted_name(ch.name) + ": its interior features lie on both sides of its border "
                                    "on the mesh; each chart's interior features must be inside its border");
         int side = -1;
         if (!sides.empty()) {
             side = *sides.begin();
             if (side != left_side && side != right_side)
-                throw BadInput("", "chart " + named(ch.name) + ": its interior features are not beside its border on "
+                throw BadInput("", "chart " + quoted_name(ch.name) + ": its interior features are not beside its border on "
                                        "the mesh; each chart's interior features must be inside its border");
         } else {
             const int preferred = ch.image_ccw ? left_side : right_side, other = ch.image_ccw ? right_side : left_side;
             side = preferred >= 0 && chart_of_component[preferred] < 0 ? preferred : other >= 0 ? other : preferred;
         }
-        if (side < 0) throw BadInput("", "chart " + named(ch.name) + ": its border has no face beside it");
+        if (side < 0) throw BadInput("", "chart " + quoted_name(ch.name) + ": its border has no face beside it");
         if (chart_of_component[side] >= 0)
-            throw BadInput("", "charts " + named(charts[chart_of_component[side]].name) + " and " + named(ch.name) +
+            throw BadInput("", "charts " + quoted_name(charts[chart_of_component[side]].name) + " and " + quoted_name(ch.name) +
                                    " both take the same region of the mesh");
         chart_of_component[side] = int(c);
     }
@@ -276,7 +275,7 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
         std::set<int> loop_vertices(loops[c].begin(), loops[c].end());
         const bool bounded = topo.is_disc && topo.border_edges == int(loops[c].size());
         if (!bounded)
-            throw BadInput("", "chart " + named(ch.name) + ": its region of the mesh is not a disc bounded by its border (" +
+            throw BadInput("", "chart " + quoted_name(ch.name) + ": its region of the mesh is not a disc bounded by its border (" +
                                    std::to_string(topo.border_loops) + " border loops, Euler characteristic " +
                                    std::to_string(topo.euler) +
                                    "): on a mesh with handles or holes, the border must go round a disc");
@@ -286,8 +285,8 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
             if (local[v] >= 0 && !loop_vertices.count(v) && !own.count(v)) foreign.push_back(name);
         if (!foreign.empty()) {
             std::string list;
-            for (const auto& n : foreign) list += (list.empty() ? "" : ", ") + named(n);
-            throw BadInput("", "chart " + named(ch.name) + ": its region of the mesh holds features of other charts (" +
+            for (const auto& n : foreign) list += (list.empty() ? "" : ", ") + quoted_name(n);
+            throw BadInput("", "chart " + quoted_name(ch.name) + ": its region of the mesh holds features of other charts (" +
                                    list + "): list them in this chart too, or move the border");
         }
         out.charts.push_back(std::move(r));

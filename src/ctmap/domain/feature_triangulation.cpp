@@ -11,6 +11,7 @@
 #include <set>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/printable.h"
 
 namespace ctmap {
 namespace {
@@ -59,7 +60,7 @@ void mark_domains(CDT& cdt) {
 }  // namespace
 
 std::string feature_label(const std::vector<std::string>& names, int i) {
-    return i < int(names.size()) && !names[i].empty() ? "'" + names[i] + "'" : "#" + std::to_string(i);
+    return i < int(names.size()) && !names[i].empty() ? quoted_name(names[i]) : "#" + std::to_string(i);
 }
 
 FeatureTriangulation triangulate_features(const std::vector<Vec2>& uv, const std::vector<int>& border,

@@ -84,8 +84,8 @@ ChartFile parse_chart_features(const std::string& text, const std::string& path)
             if (p.empty()) continue;
             auto [it, fresh] = place.emplace(name, std::make_pair(p, name_of[c]));
             if (!fresh && it->second.first != p)
-                problems.push_back("feature " + quoted_name(name) + " is at " + it->second.first + " in chart " +
-                                   quoted_name(it->second.second) + " but at " + p + " in chart " + quoted_name(name_of[c]) +
+                problems.push_back("feature " + quoted_name(name) + " is at " + printable(it->second.first) + " in chart " +
+                                   quoted_name(it->second.second) + " but at " + printable(p) + " in chart " + quoted_name(name_of[c]) +
                                    ": a feature is one place on the mesh in every chart");
         }
     }
@@ -105,7 +105,7 @@ ChartFile parse_chart_features(const std::string& text, const std::string& path)
             if (f.is_object() && f.contains("name") && f["name"].is_string() && place_of(f).empty()) {
                 const auto it = place.find(f["name"].get<std::string>());
                 if (it == place.end()) {
-                    problems.push_back("chart " + quoted_name(name_of[c]) + ": feature " + f["name"].dump() +
+                    problems.push_back("chart " + quoted_name(name_of[c]) + ": feature " + quoted_name(f["name"].get<std::string>()) +
                                        " has no \"vertex\" or \"point\" in any chart");
                     continue;
                 }
@@ -137,7 +137,7 @@ ChartFile parse_chart_features(const std::string& text, const std::string& path)
             for (const Feature& f : cf.features.features) known.insert(f.name);
             for (const json& b : ch["border"]) {
                 if (!b.is_string()) {
-                    problems.push_back("chart " + quoted_name(cf.name) + ": \"border\" holds " + b.dump() + ", not a feature name");
+                    problems.push_back("chart " + quoted_name(cf.name) + ": \"border\" holds " + printable(b.dump()) + ", not a feature name");
                     continue;
                 }
                 const std::string n = b.get<std::string>();

@@ -73,7 +73,7 @@ FeatureSet parse_features(const std::string& text, const std::string& path) {
 
     if (doc.contains("units")) {
         if (!doc["units"].is_string() || (doc["units"] != "pixels" && doc["units"] != "uv"))
-            problems.add("wrong units " + doc["units"].dump() + ": use \"pixels\" or \"uv\"");
+            problems.add("wrong units " + printable(doc["units"].dump()) + ": use \"pixels\" or \"uv\"");
         else
             out.units = doc["units"].get<std::string>();
     }
@@ -122,7 +122,7 @@ FeatureSet parse_features(const std::string& text, const std::string& path) {
             else if (has_vertex) {
                 const json& v = f["vertex"];
                 if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() > 2000000000LL)
-                    problems.add(who + ": \"vertex\" must be a non-negative integer index, got " + v.dump());
+                    problems.add(who + ": \"vertex\" must be a non-negative integer index, got " + printable(v.dump()));
                 else
                     feat.vertex = v.get<int>();
             } else {

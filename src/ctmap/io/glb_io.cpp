@@ -13,6 +13,7 @@
 
 #include "ctmap/errors.h"
 #include "ctmap/io/glb_container.h"
+#include "ctmap/io/printable.h"
 #include "ctmap/io/image.h"
 #include "ctmap/io/input_file.h"
 #include "ctmap/io/vertex_normals.h"
@@ -425,7 +426,7 @@ TexturedMesh read_glb(const std::string& path, GlbTexture* texture) {
     } else {
         ok = gltf.LoadASCIIFromFile(&m, &err, &warn, path);
     }
-    if (!ok) throw BadInput(path, "not a readable glTF file: " + err);
+    if (!ok) throw BadInput(path, "not a readable glTF file: " + printable(err, 300));
     if (m.meshes.empty() || m.meshes[0].primitives.empty()) throw BadInput(path, "no mesh in the glTF file");
     // Every primitive of the first mesh, primitive k as chart k (ctmap writes one per chart,
     // issue 13, on shared vertex attributes: an attribute accessor is read once).

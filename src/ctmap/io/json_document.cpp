@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/printable.h"
 
 namespace ctmap {
 namespace {
@@ -40,11 +41,11 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& p
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
-        throw BadInput(path, std::string("not valid JSON: ") + e.what());
+        throw BadInput(path, "not valid JSON: " + printable(e.what(), 200));
     } catch (const nlohmann::json::out_of_range& e) {  // a number such as 1e999 that no double holds
-        throw BadInput(path, std::string("a number is out of range (too large for a double): ") + e.what());
+        throw BadInput(path, "a number is out of range (too large for a double): " + printable(e.what(), 200));
     } catch (const nlohmann::json::exception& e) {
-        throw BadInput(path, std::string("not valid JSON: ") + e.what());
+        throw BadInput(path, "not valid JSON: " + printable(e.what(), 200));
     }
 }
 
