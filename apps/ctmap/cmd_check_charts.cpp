@@ -12,6 +12,7 @@
 #include "ctmap/io/chart_features.h"
 #include "ctmap/io/glb_io.h"
 #include "ctmap/io/obj_io.h"
+#include "ctmap/io/printable.h"
 
 namespace ctmap::cli {
 
@@ -57,7 +58,7 @@ int check_charts(const std::string& map_path, const std::string& features_path, 
             for (std::size_t m = 0; m < materials.size(); ++m)
                 if (materials[m].name == chart_material_name(cf.name)) chart = int(m);
             if (chart < 0)
-                throw BadInput(map_path, "no material " + chart_material_name(cf.name) + " for chart '" + cf.name + "' of " +
+                throw BadInput(map_path, "no material " + chart_material_name(cf.name) + " for chart " + quoted_name(cf.name) + " of " +
                                              features_path + ": was this map made from these charts?");
         }
         check_features_on_mesh(cf.features, tm.mesh, map_path, snap);
@@ -68,7 +69,7 @@ int check_charts(const std::string& map_path, const std::string& features_path, 
             vertices.push_back(in_chart(fv[i], chart));
             uvs.push_back(uv);
             charts.push_back(chart);
-            names.push_back(cf.name + "/" + cf.features.features[i].name);
+            names.push_back(printable(cf.name + "/" + cf.features.features[i].name));
         }
     }
     CertifyOptions opt;

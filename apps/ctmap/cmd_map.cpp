@@ -25,6 +25,7 @@
 #include "ctmap/io/output_paths.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
+#include "ctmap/io/printable.h"
 
 namespace ctmap::cli {
 namespace {
@@ -40,7 +41,7 @@ std::string fixed(double x, int digits) {
 /// The first line of `ctmap map`'s output, printed as soon as the inputs are read.
 void print_map_header(const MapArgs& a, std::size_t features, const MapRun& run, std::ostream& os) {
     os << "ctmap map: " << a.mesh << " with " << features << " features on "
-       << (run.image.empty() ? std::string("a") : run.image) << " (" << run.width << " x " << run.height << ")"
+       << (run.image.empty() ? std::string("a") : terminal_text(run.image)) << " (" << run.width << " x " << run.height << ")"
        << std::endl;
 }
 
@@ -119,7 +120,7 @@ MapRun run_map(const MapArgs& a) {
     if (!a.quiet && !run.result.auto_border.vertex.empty())
         std::cout << "  " << auto_border_line(run.result.auto_border, run.result.auto_border_fixed) << std::endl;
     if (!a.quiet && run.texture.upright)
-        std::cout << "  note: " << run.image << " is turned by its EXIF orientation; the OBJ's material uses the "
+        std::cout << "  note: " << terminal_text(run.image) << " is turned by its EXIF orientation; the OBJ's material uses the "
                   << "upright copy " << run.texture.copy << std::endl;
     if (!a.quiet && run.result.point_features_moved > 0)
         std::cout << "  note: 3D point features moved onto the mesh by up to " << run.result.point_features_moved

@@ -22,6 +22,7 @@
 #include "ctmap/io/obj_io.h"
 #include "ctmap/io/output_paths.h"
 #include "ctmap/io/read_mesh.h"
+#include "ctmap/io/printable.h"
 
 namespace ctmap::cli {
 namespace {
@@ -104,8 +105,8 @@ ChartsRun run_map_charts(const MapArgs& a) {
     if (!a.quiet) {
         std::cout << "ctmap map: " << a.mesh << " with " << charts.size() << (charts.size() == 1 ? " chart:" : " charts:");
         for (std::size_t c = 0; c < charts.size(); ++c)
-            std::cout << (c ? ";" : "") << " '" << charts[c].name << "' " << charts[c].features.size() << " features on "
-                      << (run.images[c].empty() ? std::string("a") : run.images[c]) << " (" << run.sizes[c][0] << " x "
+            std::cout << (c ? ";" : "") << " " << quoted_name(charts[c].name) << " " << charts[c].features.size() << " features on "
+                      << (run.images[c].empty() ? std::string("a") : terminal_text(run.images[c])) << " (" << run.sizes[c][0] << " x "
                       << run.sizes[c][1] << ")";
         std::cout << std::endl;
     }
@@ -224,8 +225,8 @@ int validate_charts(const std::string& mesh_path, const std::string& features_pa
               << in.charts.size() << (in.charts.size() == 1 ? " chart in " : " charts in ") << features_path << "\n";
     for (std::size_t c = 0; c < r.charts.size(); ++c) {
         const ChartMap& cm = r.charts[c];
-        std::cout << "  chart '" << cm.name << "': " << in.charts[c].features.size() << " features on "
-                  << (in.images[c].empty() ? std::string("a") : in.images[c]) << " (" << in.sizes[c][0] << " x "
+        std::cout << "  chart " << quoted_name(cm.name) << ": " << in.charts[c].features.size() << " features on "
+                  << (in.images[c].empty() ? std::string("a") : terminal_text(in.images[c])) << " (" << in.sizes[c][0] << " x "
                   << in.sizes[c][1] << "), " << cm.result.triangulation.triangles.size() << " patches, "
                   << cm.faces.size() << " faces\n";
         if (!cm.result.auto_border.vertex.empty())
