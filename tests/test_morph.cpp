@@ -204,7 +204,15 @@ const Case kMorphCases[] = {
          return morph_run(d, R"({"name": "b0", "source": {"vertex": 200}, "target": {"vertex": 200}},
              {"name": "b1", "source": {"vertex": 153}, "target": {"vertex": 1}},
              {"name": "b2", "source": {"vertex": 1}, "target": {"vertex": 153}})",
-                          {"different cyclic order", "b0, b1, b2", "b0, b2, b1"});
+                          {"different cyclic order", "'b0', 'b1', 'b2'", "'b0', 'b2', 'b1'"});
+     }},
+    // A name from the file is quoted printable and cut (io/printable.h): an escape sequence and
+    // 200 bytes become '?[31m' and 59 more bytes with "...".
+    {"LongNameWithAnEscapeSequence", [](const TempDir& d) {
+         const std::string name = "\\u001b[31m" + std::string(200, 'x');
+         return morph_run(d, std::string(kBorder3) + R"(, {"name": ")" + name + R"(", "source": {"vertex": 87}, "target": {"vertex": 87}},
+             {"name": ")" + name + R"(", "source": {"vertex": 88}, "target": {"vertex": 88}})",
+                          {"two pairs are named '?[31m" + std::string(59, 'x') + "...'"});
      }},
     {"PointOffTheSurface", [](const TempDir& d) {
          return morph_run(d, std::string(kBorder3) + R"(, {"name": "nose", "source": {"point": [0.1, 0.2, 5]}, "target": {"vertex": 87}})",
@@ -218,7 +226,7 @@ const Case kMorphCases[] = {
          return morph_run(d, R"({"name": "b0", "source": {"vertex": 200}, "target": {"vertex": 200}},
              {"name": "b1", "source": {"vertex": 153}, "target": {"vertex": 153}},
              {"name": "nose", "source": {"vertex": 87}, "target": {"vertex": 87}})",
-                          {"only 2 pair(s)", "b0, b1", "at least 3 border pairs"});
+                          {"only 2 pair(s)", "'b0', 'b1'", "at least 3 border pairs"});
      }},
     {"ClosedMesh", [](const TempDir& d) {
          write_file(d / "tet.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n");

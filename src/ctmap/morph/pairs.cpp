@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "ctmap/errors.h"
+#include "ctmap/io/printable.h"
 #include "ctmap/io/input_file.h"
 #include "ctmap/io/json_document.h"
 
@@ -82,7 +83,7 @@ PairSet parse_pairs(const std::string& text, const std::string& path) {
                 problems.push_back(label + ": \"name\" must be a non-empty string");
             else
                 fp.name = p["name"].get<std::string>();
-            const std::string who = fp.name.empty() ? label : "pair '" + fp.name + "'";
+            const std::string who = fp.name.empty() ? label : "pair " + quoted_name(fp.name);
             fp.source = parse_end(p, "source", who, problems);
             fp.target = parse_end(p, "target", who, problems);
             out.pairs.push_back(std::move(fp));
@@ -93,17 +94,17 @@ PairSet parse_pairs(const std::string& text, const std::string& path) {
     std::map<std::string, int> names;
     std::map<int, std::string> source_vertex, target_vertex;
     for (const FeaturePair& p : out.pairs) {
-        if (!names.emplace(p.name, 0).second) problems.push_back("two pairs are named '" + p.name + "'");
+        if (!names.emplace(p.name, 0).second) problems.push_back("two pairs are named " + quoted_name(p.name));
         if (p.source.vertex >= 0) {
             auto [it, fresh] = source_vertex.emplace(p.source.vertex, p.name);
             if (!fresh)
-                problems.push_back("pairs '" + it->second + "' and '" + p.name + "' are at the same source vertex " +
+                problems.push_back("pairs " + quoted_name(it->second) + " and " + quoted_name(p.name) + " are at the same source vertex " +
                                    std::to_string(p.source.vertex));
         }
         if (p.target.vertex >= 0) {
             auto [it, fresh] = target_vertex.emplace(p.target.vertex, p.name);
             if (!fresh)
-                problems.push_back("pairs '" + it->second + "' and '" + p.name + "' are at the same target vertex " +
+                problems.push_back("pairs " + quoted_name(it->second) + " and " + quoted_name(p.name) + " are at the same target vertex " +
                                    std::to_string(p.target.vertex));
         }
     }
