@@ -195,7 +195,9 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
 
     // The path from u to w in the network as it stands, refining around its ends up to
     // `max_refinements` times when none is found (each refinement changes the mesh).
-    auto find = [&](int u, int w, int max_refinements) {
+    // `missed`: a search without refinement already found nothing in the network as it stands
+    // (insert_shortest_path_first's lazy candidates), so the first search is not run again.
+    auto find = [&](int u, int w, int max_refinements, bool missed) {
         std::optional<FoundPath> found;
         for (int attempt = 0;; ++attempt) {
             PathConstraints c;
@@ -210,22 +212,24 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
                 c.guide = &net.guide;
                 c.guide_weight = guide_weight;
             }
-            if (opt.exact_geodesics && attempt == 0 && !guided) {  // a geodesic ignores the guide
-                found = find_exact_path(net.mesh, c);
-                if (found) {
-                    ++stats.exact_paths;
-                    break;
+            if (!(missed && attempt == 0)) {
+                if (opt.exact_geodesics && attempt == 0 && !guided) {  // a geodesic ignores the guide
+                    found = find_exact_path(net.mesh, c);
+                    if (found) {
+                        ++stats.exact_paths;
+                        break;
+                    }
+                    ++stats.exact_rejected;
                 }
-                ++stats.exact_rejected;
+                PathSearchOptions s = search;
+                // Closer features get finer points (dense layouts), but at most 64 times finer: two
+                // features a hair apart would otherwise put a million points on every edge met.
+                s.spacing = search.spacing;
+                if (opt.reach_spacing_factor > 0)
+                    s.spacing = std::max(search.spacing / 64, std::min(search.spacing, opt.reach_spacing_factor * dist3(u, w)));
+                s.spacing /= double(1 << std::min(attempt, 4));
+                found = find_path(net.mesh, c, s);
             }
-            PathSearchOptions s = search;
-            // Closer features get finer points (dense layouts), but at most 64 times finer: two
-            // features a hair apart would otherwise put a million points on every edge met.
-            s.spacing = search.spacing;
-            if (opt.reach_spacing_factor > 0)
-                s.spacing = std::max(search.spacing / 64, std::min(search.spacing, opt.reach_spacing_factor * dist3(u, w)));
-            s.spacing /= double(1 << std::min(attempt, 4));
-            found = find_path(net.mesh, c, s);
             if (found || attempt >= max_refinements) break;
             if (attempt == 0) ++stats.fallback_fired;
             const int added = net.refine_sector(c.source_sector) + net.refine_sector(net.sector(w, u));
@@ -262,13 +266,15 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
 
     if (!shortest_path_first) {
         for (const auto& [u, w] : nearest) {
-            const std::optional<FoundPath> found = find(u, w, opt.max_refinements);
+            const std::optional<FoundPath> found = find(u, w, opt.max_refinements, false);
             if (!found) throw no_path_error(u, w);
             if (!insert(u, w, *found)) return std::nullopt;
         }
     } else {
         PathNetworkAccess access;
-        access.find = [&](int u, int w, bool refine) { return find(u, w, refine ? opt.max_refinements : 0); };
+        access.find = [&](int u, int w, bool refine, bool missed) {
+            return find(u, w, refine ? opt.max_refinements : 0, refine && missed);
+        };
         access.insert = insert;
         access.lower_bound = dist3;
         if (!insert_shortest_path_first(ft, access)) return std::nullopt;

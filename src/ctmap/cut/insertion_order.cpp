@@ -74,8 +74,10 @@ bool run_stage(Queue& queue, const PathNetworkAccess& net, int& version, Wanted&
         queue.pop();
         if (!wanted(top.u, top.w)) continue;
         if (top.version == version) {
+            // Searched in this network (its key): the path found then, or none, which refining
+            // around the ends may give.
             std::optional<FoundPath> found = std::move(cache[{top.u, top.w}]);
-            if (!found) found = net.find(top.u, top.w, true);
+            if (!found) found = net.find(top.u, top.w, true, true);
             if (!found) throw no_path_error(top.u, top.w);
             if (!net.insert(top.u, top.w, *found)) return false;
             ++version;
@@ -84,7 +86,7 @@ bool run_stage(Queue& queue, const PathNetworkAccess& net, int& version, Wanted&
             continue;
         }
         std::optional<FoundPath>& slot = cache[{top.u, top.w}];
-        slot = net.find(top.u, top.w, false);
+        slot = net.find(top.u, top.w, false, false);
         queue.push({slot ? slot->length : std::numeric_limits<double>::max(), top.u, top.w, version});
     }
     return true;

@@ -29,8 +29,9 @@ InternalError no_path_error(int u, int w);
 /// How `insert_shortest_path_first` reaches the network.
 struct PathNetworkAccess {
     /// The path from u to w in the network as it stands; `refine`: refine around the ends when
-    /// none is found (which changes the mesh) rather than return nothing.
-    std::function<std::optional<FoundPath>(int u, int w, bool refine)> find;
+    /// none is found (which changes the mesh) rather than return nothing; `missed`: a search
+    /// without refinement found none in the network as it stands (it need not run again).
+    std::function<std::optional<FoundPath>(int u, int w, bool refine, bool missed)> find;
     /// Inserts the path; false when the cut gives up (its growth limit).
     std::function<bool(int u, int w, const FoundPath& path)> insert;
     /// A lower bound of the search length from u to w (the features' 3D distance).
