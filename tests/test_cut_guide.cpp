@@ -22,9 +22,11 @@ namespace {
 
 /// The map stopping after the paper's relaxation with the cut's `guide`, checked and certified.
 MapResult certified_map(const TriMesh& mesh, const std::vector<MapFeature>& features, CutOptions::Guide guide,
-                        const std::string& what) {
+                        const std::string& what,
+                        const std::function<void(const std::string&, int, int)>& progress = nullptr) {
     MapOptions opt;
     opt.cut.guide = guide;
+    opt.progress = progress;
     return certified_paper_map(mesh, features, opt, what);
 }
 
@@ -77,7 +79,23 @@ TEST(CutGuide, ATwistedLayoutIsCutAgainShortestFirstAndGrowsLess) {
     // Twist 8: the paper's cut alone (no limit), and the automatic one.
     const std::vector<MapFeature> features = twisted(mesh, 8.0);
     const MapResult surface = certified_map(mesh, features, CutOptions::Guide::off, "twist 8, paper's cut");
-    const MapResult automatic = certified_map(mesh, features, CutOptions::Guide::automatic, "twist 8, automatic");
+    // Its progress lines: the paths' count starts over with the second cut, under a name of its
+    // own, and never goes back within one name.
+    std::vector<std::pair<std::string, int>> lines;
+    int total = 0;
+    const MapResult automatic = certified_map(mesh, features, CutOptions::Guide::automatic, "twist 8, automatic",
+                                              [&](const std::string& stage, int done, int n) {
+                                                  if (stage.rfind("paths", 0) != 0) return;
+                                                  lines.push_back({stage, done}), total = n;
+                                              });
+    ASSERT_FALSE(lines.empty());
+    std::vector<std::string> stages;
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+        if (stages.empty() || stages.back() != lines[k].first) stages.push_back(lines[k].first);
+        else EXPECT_GT(lines[k].second, lines[k - 1].second) << lines[k].first;
+    }
+    EXPECT_EQ(stages, (std::vector<std::string>{"paths", "paths (again, shortest first)"}));
+    EXPECT_EQ(lines.back().second, total);
     std::printf("three_peaks, 400 features, twist 8: %d faces in; paper's order %d faces out; automatic: given up "
                 "at %d faces, shortest first %d faces out\n",
                 mesh.num_faces(), surface.cut.mesh.num_faces(), automatic.cut_stats.guide_restart_faces,

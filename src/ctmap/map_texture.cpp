@@ -360,7 +360,7 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
     t0 = Clock::now();
     CutOptions copt = options.cut;
     if (options.progress && !copt.progress)
-        copt.progress = [&](int done, int total) { options.progress("paths", done, total); };
+        copt.progress = [&](const std::string& stage, int done, int total) { options.progress(stage, done, total); };
     r.cut = cut_mesh(mesh, fv, r.triangulation, copt, &r.cut_stats);
     r.timings_ms.paths = ms_since(t0);
 

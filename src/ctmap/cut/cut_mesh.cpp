@@ -150,7 +150,7 @@ Vec3 barycentric(const TriMesh& mesh, int f, const Vec3& P) {
 /// up (nothing) when the work mesh gets more than `face_limit` faces.
 std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& feature_vertex,
                                 const FeatureTriangulation& ft, const CutOptions& opt, CutOptions::Order order, bool guided,
-                                std::size_t face_limit, CutStats& stats) {
+                                std::size_t face_limit, CutStats& stats, const std::string& stage) {
     Network net(input, feature_vertex, ft);
     const int nfeat = int(feature_vertex.size());
     double guide_weight = 0;
@@ -256,7 +256,7 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
         net.add_chain(u, w, chain);
         ++stats.paths;
         ++inserted;
-        if (opt.progress) opt.progress(inserted, total);
+        if (opt.progress) opt.progress(stage, inserted, total);
         if (net.mesh.faces.size() > face_limit) {
             stats.guide_restart_faces = int(net.mesh.faces.size());
             return false;
@@ -403,13 +403,14 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
         // (Asked for shortest first from the start: that cut alone, up to three times the limit.)
         int first_restart = 0, second_restart = 0;
         if (order != CutOptions::Order::shortest_path || opt.exact_geodesics) {
-            out = cut_with(input, feature_vertex, ft, opt, order, false, capped(limit), stats);
+            out = cut_with(input, feature_vertex, ft, opt, order, false, capped(limit), stats, "paths");
             if (!out) first_restart = stats.guide_restart_faces;
         }
         if (!out && !opt.exact_geodesics) {
             order = CutOptions::Order::shortest_path;
             stats = CutStats();
-            out = cut_with(input, feature_vertex, ft, opt, order, false, capped(3 * limit), stats);
+            out = cut_with(input, feature_vertex, ft, opt, order, false, capped(3 * limit), stats,
+                           first_restart > 0 ? "paths (again, shortest first)" : "paths");
             if (!out) second_restart = stats.guide_restart_faces;
         }
         if (!out) stats = CutStats();
@@ -420,13 +421,14 @@ CutMesh cut_mesh(const TriMesh& input, const std::vector<int>& feature_vertex, c
         const bool guided = opt.guide != CutOptions::Guide::off;
         const int levels = guided ? opt.guide_subdivisions : 0;
         const int first_restart = stats.guide_restart_faces, second_restart = stats.shortest_path_restart_faces;
+        const std::string stage = first_restart > 0 || second_restart > 0 ? "paths (again, guided)" : "paths";
         if (levels == 0) {
-            out = cut_with(input, feature_vertex, ft, opt, order, guided, unlimited, stats);
+            out = cut_with(input, feature_vertex, ft, opt, order, guided, unlimited, stats, stage);
         } else {
             // The same surface with smaller faces: the input's vertices keep their ids, so the
             // features do; each input face f becomes faces f * 4^levels ... (f + 1) * 4^levels - 1.
             const TriMesh fine = subdivide_midpoint(input, levels);
-            out = cut_with(fine, feature_vertex, ft, opt, order, guided, unlimited, stats);
+            out = cut_with(fine, feature_vertex, ft, opt, order, guided, unlimited, stats, stage);
             if (out) to_input_faces(input, levels, *out, stats);
         }
         stats.guide_subdivisions = levels;

@@ -96,8 +96,10 @@ struct CutOptions {
     /// mesh further. three_peaks with 400 features twisted by 8, paper's order: 133,473 faces at
     /// 0, 91,074 at 1 and a map 180 times less distorted (BENCHMARKS.md, "Hard layouts").
     int guide_subdivisions = 1;
-    /// Called with a short message as paths are inserted (for progress lines).
-    std::function<void(int done, int total)> progress;
+    /// Called as paths are inserted (for progress lines): `stage` is "paths", or, when the
+    /// automatic cut gives a cut up and starts again, "paths (again, shortest first)" or "paths
+    /// (again, guided)", so that a count that starts over comes under a name of its own.
+    std::function<void(const std::string& stage, int done, int total)> progress;
 };
 
 /// Counts of the cut, for reports and benchmarks.
