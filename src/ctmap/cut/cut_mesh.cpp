@@ -147,7 +147,8 @@ Vec3 barycentric(const TriMesh& mesh, int f, const Vec3& P) {
 }
 
 /// The cut with the paths searched on the surface (`guided` false) or with the guide map; gives
-/// up (nothing) when the work mesh gets more than `face_limit` faces.
+/// up (nothing) when the work mesh gets more than `face_limit` faces. `stage` names its progress
+/// lines (CutOptions::progress).
 std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& feature_vertex,
                                 const FeatureTriangulation& ft, const CutOptions& opt, CutOptions::Order order, bool guided,
                                 std::size_t face_limit, CutStats& stats, const std::string& stage) {
