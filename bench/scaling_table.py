@@ -113,7 +113,8 @@ def isometric_section(rows, command, machine):
             f"Machine: {machine}.", "",
             "The same meshes and random feature sets as the scaling table above, one run each: the paper's "
             "pipeline (`--refine paper`, the table above) and the default (`--refine isometric`: the "
-            "relaxation, then the distortion optimiser run to its tolerance). Seconds of wall time without "
+            "relaxation, then the distortion optimiser, stopped by its tolerance or its cap of 1,000 "
+            "iterations: *stop*). Seconds of wall time without "
             "file reading; *optimiser* is its share of the default's total; SD/4 is the certificate's "
             "symmetric Dirichlet / 4 (1 = isometric) of each map; peak MB is the process's (both runs). "
             "Every map is certified (*valid*). On x64 only the 200-feature row is run (the issue's).", "",
