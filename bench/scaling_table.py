@@ -7,8 +7,8 @@
     scaling_table.py ROWS.jsonl --has MESH LEVELS FEATURES   (exit 0 if that row is in ROWS)
 
 --isometric: the rows of `bench/run --isometric` (each with the default pipeline's figures) as the
-section "Scaling of the default". Without --markdown the table is printed. The section is replaced between its markers, so the
-other sections of BENCHMARKS.md (written by other benchmarks) are left as they are.
+section "Scaling of the default". Without --markdown the table is printed. The section is replaced
+between its markers, so the other sections of BENCHMARKS.md (written by other benchmarks) are left as they are.
 """
 import argparse
 import json

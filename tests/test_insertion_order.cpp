@@ -83,7 +83,8 @@ TEST(InsertionOrder, APairWhosePlainSearchMissedIsRefinedWithoutSearchingAgain) 
     }
     // Each of feature 4's five edges needed the refinement.
     EXPECT_EQ(refined, 5);
-    for (const auto& [key, n] : plain) EXPECT_EQ(n, 1) << key[0] << "-" << key[1] << " searched twice at version " << key[2];
+    for (const auto& [key, n] : plain)
+        EXPECT_EQ(n, 1) << key[0] << "-" << key[1] << " searched twice at version " << key[2];
 }
 
 }  // namespace

@@ -227,7 +227,8 @@ std::optional<CutMesh> cut_with(const TriMesh& input, const std::vector<int>& fe
                 // features a hair apart would otherwise put a million points on every edge met.
                 s.spacing = search.spacing;
                 if (opt.reach_spacing_factor > 0)
-                    s.spacing = std::max(search.spacing / 64, std::min(search.spacing, opt.reach_spacing_factor * dist3(u, w)));
+                    s.spacing = std::max(search.spacing / 64,
+                                         std::min(search.spacing, opt.reach_spacing_factor * dist3(u, w)));
                 s.spacing /= double(1 << std::min(attempt, 4));
                 found = find_path(net.mesh, c, s);
             }

@@ -9,8 +9,8 @@
 
 #include "ctmap/border_loop.h"
 #include "ctmap/errors.h"
-#include "ctmap/io/printable.h"
 #include "ctmap/io/mesh_topology.h"
+#include "ctmap/io/printable.h"
 #include "ctmap/morph/surface_distance.h"
 
 #include <memory>
@@ -40,11 +40,12 @@ std::vector<int> place_ends(TriMesh& mesh, const PairSet& set, bool source, doub
         f.name = p.name;
         f.vertex = e.vertex;
         if (e.vertex >= mesh.num_vertices())
-            throw BadInput(set.path, "pair " + quoted_name(p.name) + ": " + side + " vertex " + std::to_string(e.vertex) +
-                                         " does not exist (" + file + " has " + std::to_string(mesh.num_vertices()) +
+            throw BadInput(set.path, "pair " + quoted_name(p.name) + ": " + side + " vertex " +
+                                         std::to_string(e.vertex) + " does not exist (" + file + " has " + std::to_string(mesh.num_vertices()) +
                                          " vertices)");
         if (e.vertex < 0 && !e.point)
-            throw BadInput(set.path, "pair " + quoted_name(p.name) + ": the " + side + " end has neither a vertex nor a point");
+            throw BadInput(set.path,
+                           "pair " + quoted_name(p.name) + ": the " + side + " end has neither a vertex nor a point");
         if (e.vertex < 0) f.point = *e.point;
         ends.push_back(f);
     }
@@ -57,16 +58,16 @@ std::vector<int> place_ends(TriMesh& mesh, const PairSet& set, bool source, doub
         if (!surface) surface = std::make_unique<SurfaceDistance>(mesh);
         const double d = surface->distance(ends[i].point);
         if (!(d <= tolerance))
-            throw BadInput(set.path, "pair " + quoted_name(ends[i].name) + ": the " + side + " point is " + std::to_string(d) +
-                                         " off the surface of " + file + " (more than " + std::to_string(tolerance) +
+            throw BadInput(set.path, "pair " + quoted_name(ends[i].name) + ": the " + side + " point is " +
+                                         std::to_string(d) + " off the surface of " + file + " (more than " + std::to_string(tolerance) +
                                          "); give a point on the surface or a vertex");
     }
     const std::vector<int> vertex = place_point_features(mesh, ends, snap);
     for (std::size_t i = 0; i < vertex.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
             if (vertex[i] == vertex[j])
-                throw BadInput(set.path, "pairs " + quoted_name(ends[j].name) + " and " + quoted_name(ends[i].name) + " are at the same " +
-                                             side + " vertex " + std::to_string(vertex[i]));
+                throw BadInput(set.path, "pairs " + quoted_name(ends[j].name) + " and " + quoted_name(ends[i].name) +
+                                             " are at the same " + side + " vertex " + std::to_string(vertex[i]));
     return vertex;
 }
 
@@ -119,8 +120,8 @@ MorphResult morph_meshes(const TriMesh& source_in, const TriMesh& target_in, con
     std::string one_sided;
     for (std::size_t i = 0; i < pairs.pairs.size(); ++i)
         if (on_source[i] != on_target[i])
-            one_sided += "\n  - pair " + quoted_name(pairs.pairs[i].name) + " lies on the " + (on_source[i] ? "source" : "target") +
-                         "'s border but not on the " + (on_source[i] ? "target" : "source") + "'s";
+            one_sided += "\n  - pair " + quoted_name(pairs.pairs[i].name) + " lies on the " +
+                         (on_source[i] ? "source" : "target") + "'s border but not on the " + (on_source[i] ? "target" : "source") + "'s";
     if (!one_sided.empty())
         throw BadInput(pairs.path, "a pair on one border must lie on both (border pairs bound the morph):" + one_sided);
     if (tb.pair.size() < 3)

@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "ctmap/errors.h"
-#include "ctmap/io/printable.h"
 #include "ctmap/io/input_file.h"
 #include "ctmap/io/json_document.h"
+#include "ctmap/io/printable.h"
 
 namespace ctmap {
 namespace {
@@ -98,14 +98,14 @@ PairSet parse_pairs(const std::string& text, const std::string& path) {
         if (p.source.vertex >= 0) {
             auto [it, fresh] = source_vertex.emplace(p.source.vertex, p.name);
             if (!fresh)
-                problems.push_back("pairs " + quoted_name(it->second) + " and " + quoted_name(p.name) + " are at the same source vertex " +
-                                   std::to_string(p.source.vertex));
+                problems.push_back("pairs " + quoted_name(it->second) + " and " + quoted_name(p.name) +
+                                   " are at the same source vertex " + std::to_string(p.source.vertex));
         }
         if (p.target.vertex >= 0) {
             auto [it, fresh] = target_vertex.emplace(p.target.vertex, p.name);
             if (!fresh)
-                problems.push_back("pairs " + quoted_name(it->second) + " and " + quoted_name(p.name) + " are at the same target vertex " +
-                                   std::to_string(p.target.vertex));
+                problems.push_back("pairs " + quoted_name(it->second) + " and " + quoted_name(p.name) +
+                                   " are at the same target vertex " + std::to_string(p.target.vertex));
         }
     }
     throw_if_any(problems, path);
