@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Configures and builds ctmap. Usage: scripts/build.sh [BUILD_DIR] [extra cmake args...]
-# Two parallel jobs: the machines have 2 cores and CGAL's translation units are heavy.
+# CTMAP_BUILD_TARGETS="ctmap ...": build only those targets (default: everything the tree has).
+# Two parallel jobs: the machines have 2 cores and CGAL's translation units are heavy. The sources
+# are compiled in batches (cmake/ctmap_unity.cmake); ccache and mold are used when installed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 dir=${1:-build}
@@ -17,4 +19,6 @@ if [ ! -f "$dir/CMakeCache.txt" ]; then
 else
   cmake -S . -B "$dir" "$@" >/dev/null
 fi
-cmake --build "$dir" -j2
+targets=()
+for t in ${CTMAP_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "$dir" -j2 ${targets[@]+"${targets[@]}"}

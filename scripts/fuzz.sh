@@ -17,34 +17,16 @@ fi
 all_targets=(fuzz_off fuzz_obj fuzz_ply fuzz_stl fuzz_textured_obj fuzz_features fuzz_pairs fuzz_image fuzz_glb fuzz_gltf)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
-dir=build-fuzz
+dir=${CTMAP_SAN_DIR:-build-san}
 
-# Debian's clang-14 (scripts/install_deps.sh: clang-14, libclang-rt-14-dev, llvm-14).
-cxx=${CTMAP_FUZZ_CXX:-$(command -v clang++ || command -v clang++-14 || true)}
-if [ -z "$cxx" ]; then
-  echo "fuzz: no clang++ (install clang-14 and libclang-rt-14-dev: scripts/install_deps.sh)"
-  echo "fuzz: no clang++" >&2
-  exit 1
-fi
 symbolizer=$(command -v llvm-symbolizer-14 || command -v llvm-symbolizer || true)
 
 start=$SECONDS
-# The generator and the compiler are chosen at the first configure only (changing the compiler of
-# an existing build tree makes CMake drop its cache).
-first=()
-if [ ! -f "$dir/CMakeCache.txt" ]; then
-  command -v ninja >/dev/null && first=(-G Ninja)
-  first+=(-DCMAKE_CXX_COMPILER="$cxx")
-fi
-# -O1 without NDEBUG: assertions (Eigen's, CGAL's, the library's) stay on while fuzzing.
-mkdir -p "$dir"
-if ! cmake -S . -B "$dir" ${first[@]+"${first[@]}"} -DCTMAP_FUZZ=ON \
-  -DCTMAP_BUILD_TESTS=OFF -DCTMAP_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" >"$dir/configure.log" 2>&1; then
-  echo "fuzz: configuring $dir failed:"; tail -20 "$dir/configure.log"
+# The one sanitizer build (scripts/san_build.sh; -O1 without NDEBUG: assertions stay on).
+if ! bash scripts/san_build.sh fuzz_all; then
+  echo "fuzz: building the fuzz targets in $dir failed"; echo "fuzz: build failed" >&2
   exit 1
 fi
-cmake --build "$dir" --target fuzz_all -j2
 echo "fuzz: build took $((SECONDS - start)) s"
 
 # One run folder per invocation, in the build tree: each target's corpus copy, log and artifacts.

@@ -4,6 +4,7 @@
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
+  ccache mold  # faster rebuilds and links (scripts/build.sh uses them when present; never required)
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libcgal-demo  # CGAL's meshes: the closed and higher-genus ones of the charts tests (scripts/fetch_data.sh)
   # libopenblas0-pthread: an optimised BLAS for CHOLMOD's supernodal factorisation (refine/isometric)

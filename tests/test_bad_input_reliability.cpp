@@ -412,7 +412,7 @@ TEST(RenderReliability, RenderIsQuietWithQ) {
 TEST(BadInputReliability, WhatTheFuzzersFoundIsRefusedCleanly) {
     TempDir d;
     copy_example(d);
-    const fs::path root = fs::path(CTMAP_TESTS_SOURCE_DIR) / "fuzz" / "regressions";
+    const fs::path root = fs::path(ctmap_test::source_dir()) / "fuzz" / "regressions";
     ASSERT_TRUE(fs::is_directory(root)) << root;
     int cases = 0;
     for (const auto& target : fs::directory_iterator(root)) {

@@ -153,7 +153,7 @@ TEST(BadInputJpeg, TruncatedCorruptAndManyScanJpegsAreRefusedNamingTheFile) {
     write_file(d / "half.jpg", whole.substr(0, whole.size() / 2));
     refused(d / "half.jpg", "truncated or corrupt");
     // The fuzz finding stb_image shifted by 32 bits on (UBSan): a corrupt entropy-coded stream.
-    const std::string found = std::string(CTMAP_TESTS_SOURCE_DIR) +
+    const std::string found = std::string(ctmap_test::source_dir()) +
                               "/fuzz/regressions/fuzz_image/stb-jpeg-bit-reader-underflow";
     const std::string copy = d / "found.jpg";
     write_file(copy, read_file(found));

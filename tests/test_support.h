@@ -10,6 +10,7 @@
 #include <string>
 
 #include "ctmap/io/data_path.h"
+#include "support_paths.h"
 
 namespace ctmap::test {
 
@@ -60,7 +61,7 @@ struct RunResult {
 /// (e.g. "timeout 60"), capturing its output.
 inline RunResult run_ctmap_with_prefix(const std::string& prefix, const std::string& args) {
     RunResult r;
-    const std::string cmd = prefix + " '" + CTMAP_BINARY + "' " + args + " 2>&1";
+    const std::string cmd = prefix + " '" + ctmap_test::ctmap_binary() + "' " + args + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
     std::array<char, 4096> buf;

@@ -32,12 +32,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string fixed(double x, int digits) {
-    std::ostringstream os;
-    os << std::fixed << std::setprecision(digits) << x;
-    return os.str();
-}
-
 /// The first line of `ctmap map`'s output, printed as soon as the inputs are read.
 void print_map_header(const MapArgs& a, std::size_t features, const MapRun& run, std::ostream& os) {
     os << "ctmap map: " << a.mesh << " with " << features << " features on "

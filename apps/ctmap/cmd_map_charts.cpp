@@ -45,12 +45,6 @@ Image checker_image(int size, int cells) {
     return img;
 }
 
-std::string fixed(double x, int digits) {
-    std::ostringstream os;
-    os << std::fixed << std::setprecision(digits) << x;
-    return os.str();
-}
-
 }  // namespace
 
 ChartsInputs read_charts_inputs(const std::string& mesh_path, const std::string& features_path, double snap,

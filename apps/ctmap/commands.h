@@ -6,7 +6,9 @@
 
 #include <array>
 #include <functional>
+#include <iomanip>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,13 @@
 #include "ctmap/map_texture.h"
 
 namespace ctmap::cli {
+
+/// `x` with `digits` digits after the point (the reports' figures).
+inline std::string fixed(double x, int digits) {
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(digits) << x;
+    return os.str();
+}
 
 struct Command {
     CLI::App* sub = nullptr;       ///< the subcommand, as added to the app

@@ -6,17 +6,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "ctmap/edge_key.h"
 #include "ctmap/mesh.h"
 
 namespace ctmap {
 
-/// Key of the undirected edge {a, b}.
-inline std::uint64_t edge_key(int a, int b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
-inline int key_lo(std::uint64_t k) { return int(k >> 32); }
-inline int key_hi(std::uint64_t k) { return int(k & 0xffffffffu); }
 
 /// A refinable triangle mesh with its adjacency.
 struct WorkMesh {

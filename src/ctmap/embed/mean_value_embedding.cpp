@@ -16,15 +16,11 @@
 #include <unordered_set>
 #include <utility>
 
+#include "ctmap/edge_key.h"
 #include "ctmap/errors.h"
 
 namespace ctmap {
 namespace {
-
-std::uint64_t edge_key(int a, int b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
 
 /// Where the sides of the patches run: per vertex, the (patch, side bit mask) pairs (a vertex
 /// lies on the sides of a handful of patches at most), and the set of side edges.

@@ -29,7 +29,7 @@ std::string short_count(double n) {
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
 
 /// A cursor over whitespace-separated tokens.
-struct Tokens {
+struct TokenReader {
     std::string_view text;
     std::size_t at = 0;
     bool next(std::string_view& tok) {
@@ -57,7 +57,7 @@ struct PlyProperty {
     std::string name;
 };
 
-struct PlyElement {
+struct PlyHeaderElement {
     std::string name;
     long long count = 0;
     std::vector<PlyProperty> properties;
@@ -94,7 +94,7 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
     for (std::size_t p = 0; p < bytes.size();) {
         std::size_t eol = bytes.find('\n', p);
         if (eol == std::string_view::npos) eol = bytes.size();
-        Tokens t{bytes.substr(p, eol - p)};
+        TokenReader t{bytes.substr(p, eol - p)};
         std::string_view first;
         if (t.next(first) && first == "end_header") {
             end = p;
@@ -105,7 +105,7 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
     if (end == std::string_view::npos) refuse(path, "not a valid ply file: the header has no 'end_header' line");
     std::size_t data = bytes.find('\n', end);
     data = data == std::string_view::npos ? bytes.size() : data + 1;
-    std::vector<PlyElement> elements;
+    std::vector<PlyHeaderElement> elements;
     std::string format;
     int line = 0;
     std::size_t pos = 0;
@@ -113,14 +113,14 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
         std::size_t eol = bytes.find('\n', pos);
         if (eol == std::string_view::npos || eol > end) eol = end;
         ++line;
-        Tokens t{bytes.substr(pos, eol - pos)};
+        TokenReader t{bytes.substr(pos, eol - pos)};
         pos = eol + 1;
         std::string_view kw, a, b, c, d;
         if (!t.next(kw)) continue;
         const std::string at = "not a valid ply file: line " + std::to_string(line) + ": ";
         if (kw == "format" && t.next(a)) format = std::string(a);
         if (kw == "element") {
-            PlyElement e;
+            PlyHeaderElement e;
             if (!t.next(a) || !t.next(b) || !as_count(b, e.count))
                 refuse(path, at + "an element needs a name and a non-negative integer count");
             e.name = printable(a);  // names are only quoted in messages
@@ -150,14 +150,14 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
     // An element without properties takes no bytes, so its count is not bounded by the file: CGAL
     // loops over it reading nothing (a fuzz input declared 3.3e16 of them: a hang in the sanitizer
     // build). No mesh file needs more of them than it has bytes.
-    for (const PlyElement& e : elements)
+    for (const PlyHeaderElement& e : elements)
         if (e.properties.empty() && (long double)e.count > (long double)bytes.size())
             refuse(path, "not a valid ply file: the header declares " + std::to_string(e.count) + " '" + e.name +
                              "' elements with no properties, more than the file's " + std::to_string(bytes.size()) +
                              " bytes (a corrupt header)");
     if (format == "ascii") {
-        Tokens t{body};
-        for (const PlyElement& e : elements) {
+        TokenReader t{body};
+        for (const PlyHeaderElement& e : elements) {
             if (e.properties.empty()) continue;
             // Each value takes at least two characters ("0 "): the count must fit before reading.
             if ((long double)e.count * e.properties.size() * 2 > (long double)body.size() + 2)
@@ -188,7 +188,7 @@ void check_ply_declarations(const std::string_view path, std::string_view bytes)
     if (format != "binary_little_endian" && format != "binary_big_endian") return;  // the reader refuses it
     const bool little = format == "binary_little_endian";
     std::size_t at = 0;
-    for (const PlyElement& e : elements) {
+    for (const PlyHeaderElement& e : elements) {
         long long min_bytes = 0;
         for (const PlyProperty& p : e.properties) min_bytes += p.list ? p.count_bytes : p.value_bytes;
         if ((long double)e.count * min_bytes > (long double)(body.size() - at))
@@ -252,14 +252,14 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
             pos = eol + 1;
             ++line_no;
             if (const std::size_t c = l.find('#'); c != std::string_view::npos) l = l.substr(0, c);
-            Tokens t{l};
+            TokenReader t{l};
             std::string_view first;
             if (t.next(first)) return true;
         }
         return false;
     };
     if (!next_line()) return;
-    Tokens head{l};
+    TokenReader head{l};
     std::string_view kw, a, b;
     if (!head.next(kw) || kw.find("OFF") == std::string_view::npos) return;  // not OFF: diagnose_mesh_file says so
     // "OFF#0 1 0": CGAL reads what follows a glued '#' as the counts, this check as a comment; the
@@ -273,7 +273,7 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
     if (head.next(a) && a == "BINARY") return;  // check_off_counts bounds the binary form
     // The counts, on the keyword's line or the next: three integers and nothing else (CGAL reads
     // whatever follows them as the first vertex).
-    auto check_counts_line = [&](Tokens t, std::string_view first) {
+    auto check_counts_line = [&](TokenReader t, std::string_view first) {
         std::string_view tok = first;
         int n = 0;
         long long v = 0;
@@ -302,13 +302,13 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
     long long nv = 0, nf = 0;
     if (a.empty()) {
         if (!next_line()) return;
-        head = Tokens{l};
+        head = TokenReader{l};
         if (!head.next(a)) return;
         check_counts_line(head, a);
-        head = Tokens{l};
+        head = TokenReader{l};
         head.next(a);
     } else {
-        head = Tokens{l};
+        head = TokenReader{l};
         head.next(kw);
         head.next(a);
     }
@@ -317,7 +317,7 @@ void check_off_face_sizes(const std::string_view path, std::string_view bytes) {
     std::vector<double> entries;
     auto read_entries = [&](const std::string& who) {
         entries.clear();
-        Tokens t{l};
+        TokenReader t{l};
         std::string_view tok;
         while (t.next(tok)) {
             std::string_view num = tok;

@@ -8,16 +8,12 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "ctmap/edge_key.h"
 #include "ctmap/errors.h"
 #include "ctmap/union_find.h"
 
 namespace ctmap {
 namespace {
-
-std::uint64_t edge_key(int a, int b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
 
 bool is_degenerate(const TriMesh& m, const Tri& t) {
     using K = CGAL::Exact_predicates_inexact_constructions_kernel;

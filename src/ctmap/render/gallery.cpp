@@ -34,7 +34,7 @@ struct ModeText {
 };
 
 // In the order of the pipeline (paper §2.2-2.4), so the page reads as the method runs.
-const ModeText kModes[] = {
+const ModeText kGalleryModes[] = {
     {RenderMode::triangulation, "Fig. 1c", "Feature triangulation",
      "The features' image points joined by a constrained Delaunay triangulation; dark: the border polygon "
      "(border features in the order the mesh border meets them), red: the inner edges, which become the cut "
@@ -59,14 +59,14 @@ const ModeText kModes[] = {
 std::vector<GalleryPicture> write_gallery(const RenderFiles& files, const std::string& out_dir, const std::string& stem,
                                           const GalleryOptions& options, OutputSet& outputs) {
     std::vector<RenderMode> modes;
-    for (const ModeText& m : kModes)
+    for (const ModeText& m : kGalleryModes)
         if (m.mode != RenderMode::triangulation || !files.features.empty()) modes.push_back(m.mode);
     const RenderInputs in = read_render_inputs(files, modes);
     const RenderScene scene = in.scene();
     const std::filesystem::path dir(out_dir);
 
     std::vector<GalleryPicture> pictures;
-    for (const ModeText& m : kModes) {
+    for (const ModeText& m : kGalleryModes) {
         if (std::find(modes.begin(), modes.end(), m.mode) == modes.end()) continue;
         RenderOptions opt;
         opt.mode = m.mode;
@@ -100,7 +100,7 @@ std::vector<GalleryPicture> write_gallery(const RenderFiles& files, const std::s
     }
     html << "<p>Guo, Wang, Cui, Peng, <i>A New Constrained Texture Mapping Method</i>: each picture below redraws "
             "the figure of the paper named in its caption, for this map.</p>\n<div class=\"grid\">\n";
-    for (const ModeText& m : kModes) {
+    for (const ModeText& m : kGalleryModes) {
         const auto it = std::find_if(pictures.begin(), pictures.end(), [&](const GalleryPicture& p) { return p.mode == m.mode; });
         html << "<figure>\n";
         if (it != pictures.end())
