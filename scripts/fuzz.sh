@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (fuzz/, clang, ASan + UBSan) in build-fuzz and runs each for a
+# Builds the libFuzzer targets (fuzz/, clang, ASan + UBSan) in build-san (scripts/san_build.sh) and runs each for a
 # bounded time on a scratch copy of its seed corpus (fuzz/corpus/<target>; the committed corpus is
 # never grown). Fails if any target reports a crash, a sanitizer report, a leak, a time-out (an
 # input over 5 s) or running out of memory (2 GB).
@@ -54,12 +54,11 @@ keep_going=()
 seed=()
 [ -n "${CTMAP_FUZZ_SEED:-}" ] && seed=(-seed="$CTMAP_FUZZ_SEED")
 
-failed=()
-regressed=()
-for t in "${targets[@]}"; do
-  exe="$dir/fuzz/$t"
-  [ -x "$exe" ] || { echo "fuzz: no target $t (targets: ${all_targets[*]})" ; echo "fuzz: no target $t" >&2; exit 1; }
-  work="$runs/$t"
+# fuzz_one TARGET: the regression inputs, then the campaign, of one target; prints its lines and
+# leaves its verdict (ok, failed or regressed) in $runs/TARGET/verdict.
+fuzz_one() {
+  local t=$1
+  local exe="$dir/fuzz/$t" work="$runs/$t" log t0 rc artifacts n_artifacts execs cov result result_n= artifact
   mkdir -p "$work/corpus"
   cp fuzz/corpus/"$t"/* "$work/corpus/"
   log="$work/log.txt"
@@ -72,16 +71,16 @@ for t in "${targets[@]}"; do
         fuzz/regressions/"$t"/* >"$work/regressions.txt" 2>&1; then
       echo "fuzz: $t fails on a regression input (fuzz/regressions/$t; $work/regressions.txt)"
       { grep -E '==ctmap-fuzz==|ERROR:|runtime error|Running:' "$work/regressions.txt" || true; } | tail -6 | sed 's/^/    /'
-      failed+=("$t")
-      regressed+=("$t")
-      continue
+      echo regressed >"$work/verdict"
+      return
     fi
   fi
   if [ "${CTMAP_FUZZ_REGRESSIONS_ONLY:-0}" = 1 ]; then
-    n_regressions=0
+    local n_regressions=0
     [ ! -d "fuzz/regressions/$t" ] || n_regressions=$(find "fuzz/regressions/$t" -type f | wc -l)
     printf 'fuzz: %-18s regression inputs: %s passed\n' "$t" "$n_regressions"
-    continue
+    echo ok >"$work/verdict"
+    return
   fi
   echo "fuzz: $t: ${seconds} s of fuzzing"
   # The outer timeout only guards against libFuzzer itself hanging.
@@ -110,7 +109,6 @@ for t in "${targets[@]}"; do
     else result="crash(rc=$rc)"
     fi
     result+=${result_n:-}
-    failed+=("$t")
   fi
   artifact=$(printf '%s' "$artifacts" | head -1)
   printf 'fuzz: %-18s %-14s execs=%-9s cov=%-6s %3ss%s\n' "$t" "$result" "${execs:-?}" "${cov:-?}" \
@@ -122,6 +120,33 @@ for t in "${targets[@]}"; do
     { grep -E '==ctmap-fuzz==|ERROR:|runtime error|^ *#[0-9]+ 0x' "$log" || true; } | sed -n '1,12p' | cut -c1-220 | sed 's/^/    /'
     [ "$result" != hung ] || tail -3 "$log" | sed 's/^/    /'
   fi
+  if [ "$result" = ok ]; then echo ok >"$work/verdict"; else echo failed >"$work/verdict"; fi
+}
+
+# CTMAP_FUZZ_JOBS targets at a time (default: one per core), each target's lines printed as it ends.
+for t in "${targets[@]}"; do
+  [ -x "$dir/fuzz/$t" ] || { echo "fuzz: no target $t (targets: ${all_targets[*]})" ; echo "fuzz: no target $t" >&2; exit 1; }
+done
+jobs=${CTMAP_FUZZ_JOBS:-$(nproc)}
+declare -A job_of=()
+finish_one() {
+  local pid
+  wait -n -p pid ${!job_of[@]} || true
+  cat "$runs/${job_of[$pid]}.out"
+  unset "job_of[$pid]"
+}
+for t in "${targets[@]}"; do
+  while [ ${#job_of[@]} -ge "$jobs" ]; do finish_one; done
+  fuzz_one "$t" >"$runs/$t.out" 2>&1 &
+  job_of[$!]=$t
+done
+while [ ${#job_of[@]} -gt 0 ]; do finish_one; done
+failed=()
+regressed=()
+for t in "${targets[@]}"; do
+  verdict=$(cat "$runs/$t/verdict" 2>/dev/null || echo failed)
+  [ "$verdict" = ok ] || failed+=("$t")
+  [ "$verdict" != regressed ] || regressed+=("$t")
 done
 if [ "${CTMAP_FUZZ_REGRESSIONS_ONLY:-0}" = 1 ]; then
   if [ ${#failed[@]} -gt 0 ]; then

@@ -17,16 +17,18 @@
 namespace ctmap::test {
 namespace {
 
-TEST(CutDense, TenThousandPointFeaturesOnNefertitiGiveACertifiedMap) {
+/// `points` random point features inside nefertiti's faces and its 34 border vertices: the cut is
+/// valid, the map certified with every feature exact.
+void dense_points(int points) {
     const TriMesh mesh = read_mesh(data("meshes/nefertiti.off"));
     std::mt19937 rng(1);  // bench/hard_layouts points ... 10000 (seed 1)
     const std::vector<MapFeature> features =
-        point_features(mesh, tutte_map(mesh), 10000, int(WorkMesh(mesh).border_loop().size()), rng);
-    ASSERT_EQ(features.size(), 10034u);
+        point_features(mesh, tutte_map(mesh), points, int(WorkMesh(mesh).border_loop().size()), rng);
+    ASSERT_EQ(features.size(), std::size_t(points) + 34);
     MapOptions opt;
     opt.refine_mode = RefineMode::paper;
     const MapResult r = map_texture(mesh, features, opt);
-    const std::string what = "nefertiti, 10,034 point features";
+    const std::string what = "nefertiti, " + std::to_string(features.size()) + " point features";
     // The cut's input: the mesh with the point features inserted as vertices (as map_texture does).
     TriMesh with_points = mesh;
     const std::vector<int> vertex = place_point_features(with_points, features);
@@ -40,6 +42,13 @@ TEST(CutDense, TenThousandPointFeaturesOnNefertitiGiveACertifiedMap) {
                 mesh.num_faces(), r.cut.mesh.num_faces(), r.cut_stats.paths, r.cut_stats.steiner_vertices,
                 r.timings_ms.paths, cert.valid ? "valid" : "INVALID");
 }
+
+// CTest label `long` (scripts/test.sh --long): the 10,000 points.
+TEST(CutDenseLong, TenThousandPointFeaturesOnNefertitiGiveACertifiedMap) { dense_points(10000); }
+
+// The same property with 2,000 points (about 4 to a face), in the main suite.
+TEST(CutDense, TwoThousandPointFeaturesOnNefertitiGiveACertifiedMap) { dense_points(2000); }
+
 
 }  // namespace
 }  // namespace ctmap::test

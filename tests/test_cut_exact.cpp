@@ -3,6 +3,7 @@
 // rules the approximate search stands in. The cuts must be as valid as the approximate ones
 // (cut_check.h), and the maps built on them certified.
 #include <chrono>
+#include <initializer_list>
 
 #include "ctmap/certify/certificate.h"
 #include "ctmap/io/features.h"
@@ -45,20 +46,18 @@ TEST(CutExact, NefertitiExample) {
               << s.exact_rejected << " replaced by the approximate search; length " << s.path_length << "\n";
 }
 
-TEST(CutExact, RandomFeasibleSets) {
-    struct Case {
-        const char* mesh;
-        int features;
-        double twist;
-        std::uint32_t seed;
-    };
-    // Each exact path builds CGAL's sequence tree on the whole current mesh (0.1-0.7 s per path on
-    // mushroom and lion-head): the cases stay on the smaller meshes to keep the suite short.
-    const Case cases[] = {{"nefertiti.off", 20, 0.5, 11},   {"nefertiti.off", 40, 3.0, 12},
-                          {"nefertiti.off", 60, 1.5, 17},   {"three_peaks.off", 30, 1.0, 13},
-                          {"mushroom.off", 12, 2.0, 14}};
+struct ExactCase {
+    const char* mesh;
+    int features;
+    double twist;
+    std::uint32_t seed;
+};
+
+// Each exact path builds CGAL's sequence tree on the whole current mesh (0.1-0.7 s per path on
+// mushroom and lion-head): the cases stay on the smaller meshes.
+void random_feasible_sets(std::initializer_list<ExactCase> cases) {
     int paths = 0, exact = 0;
-    for (const Case& k : cases) {
+    for (const ExactCase& k : cases) {
         const TriMesh mesh = read_mesh(data(std::string("meshes/") + k.mesh));
         std::mt19937 rng(k.seed);
         const RandomFeatures rf = random_features(mesh, tutte_map(mesh), k.features, 8, k.twist, rng);
@@ -83,6 +82,16 @@ TEST(CutExact, RandomFeasibleSets) {
                   << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s)\n";
     }
     EXPECT_GE(exact, paths / 2);
+}
+
+// The larger sets carry the CTest label `long` (scripts/test.sh --long).
+TEST(CutExactLong, RandomFeasibleSets) {
+    random_feasible_sets({{"nefertiti.off", 40, 3.0, 12}, {"nefertiti.off", 60, 1.5, 17}, {"mushroom.off", 12, 2.0, 14}});
+}
+
+// The same property on two smaller sets, in the main suite.
+TEST(CutExact, RandomFeasibleSets) {
+    random_feasible_sets({{"nefertiti.off", 20, 0.5, 11}, {"three_peaks.off", 30, 1.0, 13}});
 }
 
 }  // namespace

@@ -8,8 +8,6 @@
 namespace ctmap {
 namespace {
 
-bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.end(), x) != v.end(); }
-
 /// The Steiner graph, implicit and local: nodes are vertices (their index) and the points of
 /// edges (a tagged key of edge and index), the number of points on an edge computed when the
 /// search meets it. Nothing is proportional to the mesh, so a search costs what it explores: the

@@ -3,6 +3,7 @@
 /// Approximate shortest paths on the surface (paper §2.3, after Zhang & Wu): Steiner points on
 /// every edge, as many as the edge's length over a spacing, a graph joining the points that share
 /// a face, and A* (Dijkstra with the straight-line distance as its admissible bound).
+#include <algorithm>
 #include <optional>
 #include <unordered_set>
 #include <vector>
@@ -11,6 +12,9 @@
 #include "ctmap/cut/work_mesh.h"
 
 namespace ctmap {
+
+/// Whether the short list `v` (a sector's faces or neighbours) holds `x`.
+inline bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.end(), x) != v.end(); }
 
 /// Where a path may start or end: the faces around the end vertex it may cross first, and the
 /// neighbours it may step to along an edge (the sector of DESIGN §2 condition 2).

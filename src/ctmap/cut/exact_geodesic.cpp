@@ -37,7 +37,6 @@ struct NodeCollector {
     void operator()(SurfaceMesh::Face_index, const Bary&) {}  // the source point itself
 };
 
-bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.end(), x) != v.end(); }
 
 }  // namespace
 

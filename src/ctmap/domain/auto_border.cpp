@@ -242,8 +242,11 @@ AutoBorder place_border_features(const TriMesh& mesh, const std::vector<int>& fv
     };
     bool mirror = false;
     if (k >= 3) {
+        // (orientation_2 needs a simple polygon; crossing given border features are refused by
+        // triangulate_features with their names.)
         const std::vector<P2> poly = polygon(uv, given);
-        mirror = CGAL::orientation_2(poly.begin(), poly.end(), K()) == CGAL::CLOCKWISE;
+        mirror = CGAL::is_simple_2(poly.begin(), poly.end(), K()) &&
+                 CGAL::orientation_2(poly.begin(), poly.end(), K()) == CGAL::CLOCKWISE;
     } else if (n > 2) {
         double spread = 0;
         Vec2 mean = Vec2::Zero();

@@ -73,18 +73,11 @@ FeatureTriangulation triangulate_features(const std::vector<Vec2>& uv, const std
     std::vector<char> on_border(n, 0);
     for (int b : border) on_border.at(b) = 1;
 
-    // The image border must run the same way round as the mesh border (counter-clockwise in UV),
-    // or the opposite way (a mirrored chart). Work in the mesh's sense: mirror x when needed.
-    std::vector<P2> poly;
-    for (int b : border) poly.emplace_back(uv[b].x(), uv[b].y());
-    const bool mirrored = CGAL::orientation_2(poly.begin(), poly.end(), K()) == CGAL::CLOCKWISE;
-    std::vector<P2> pts(n);
-    for (int i = 0; i < n; ++i) pts[i] = P2(mirrored ? -uv[i].x() : uv[i].x(), uv[i].y());
-    poly.clear();
-    for (int b : border) poly.push_back(pts[b]);
-
     // Simplicity of the border polygon with exact predicates (m is small: O(m^2) is fine). A
     // crossing means the features' order in the image differs from their order on the mesh.
+    // (Mirroring keeps crossings, so the check runs on the image's own points.)
+    std::vector<P2> poly;
+    for (int b : border) poly.emplace_back(uv[b].x(), uv[b].y());
     const int m = int(border.size());
     for (int i = 0; i < m; ++i)
         for (int j = i + 1; j < m; ++j) {
@@ -107,6 +100,15 @@ FeatureTriangulation triangulate_features(const std::vector<Vec2>& uv, const std
                                          feature_label(names, border[j]) + "-" + feature_label(names, border[j2]) +
                                          " cross in the image");
         }
+
+    // The image border must run the same way round as the mesh border (counter-clockwise in UV),
+    // or the opposite way (a mirrored chart). Work in the mesh's sense: mirror x when needed.
+    // (CGAL's orientation_2 needs a simple polygon: the check above comes first.)
+    const bool mirrored = CGAL::orientation_2(poly.begin(), poly.end(), K()) == CGAL::CLOCKWISE;
+    std::vector<P2> pts(n);
+    for (int i = 0; i < n; ++i) pts[i] = P2(mirrored ? -uv[i].x() : uv[i].x(), uv[i].y());
+    poly.clear();
+    for (int b : border) poly.push_back(pts[b]);
 
     std::vector<std::string> outside;
     for (int i = 0; i < n; ++i) {
