@@ -1,7 +1,7 @@
 #include "ctmap/io/image_bytes.h"
 
-#include <cstdint>
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "ctmap/errors.h"
@@ -30,8 +30,12 @@ std::string without_empty_idat(const std::string& b, const std::string& name) {
         if (idat && len > follow)
             throw BadInput(name, "corrupt PNG: an IDAT chunk declares " + std::to_string(len) + " bytes, but only " +
                                      std::to_string(follow) + " follow");
+        if (idat && len == 0) {  // dropped, also when its CRC is cut off (stb_image would read it)
+            at = std::min(b.size(), at + 12);
+            continue;
+        }
         if (follow < 4 || len > follow - 4) break;  // truncated or corrupt: leave the rest to stb_image
-        if (!(len == 0 && idat)) out.append(b, at, 12 + std::size_t(len));
+        out.append(b, at, 12 + std::size_t(len));
         const bool end = b.compare(at + 4, 4, "IEND") == 0;  // stb_image reads no further
         at += 12 + std::size_t(len);
         if (end) break;
