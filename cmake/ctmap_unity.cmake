@@ -66,6 +66,9 @@ endfunction()
 function(ctmap_unity_target target)
   if(CTMAP_UNITY)
     target_include_directories(${target} PRIVATE ${CMAKE_SOURCE_DIR})
+    # GCC warns when a class of an included file holds a type of its anonymous namespace, which in
+    # a batch is every such class (-Wsubobject-linkage): the warning is about headers, not batches.
+    target_compile_options(${target} PRIVATE $<$<CXX_COMPILER_ID:GNU>:-Wno-subobject-linkage>)
   endif()
 endfunction()
 
