@@ -4,6 +4,7 @@
 // then a twist whose angle grows towards the centre — so a valid constrained map always exists.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <random>
 
@@ -21,6 +22,15 @@ inline Vec2 twist(const Vec2& p, double strength) {
     const double r = p.norm(), a = std::atan2(p.y(), p.x()) + strength * (1 - r * r);
     return Vec2(r * std::cos(a), r * std::sin(a));
 }
+
+/// One random feature set of a sweep: `features` on `mesh` (from data/meshes), twisted by `twist`,
+/// drawn from `seed` (random_features with 8 border features).
+struct RandomSetCase {
+    const char* mesh;
+    int features;
+    double twist;
+    std::uint32_t seed;
+};
 
 struct RandomFeatures {
     std::vector<int> vertex;  ///< feature vertices

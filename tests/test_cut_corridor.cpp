@@ -16,15 +16,8 @@
 namespace ctmap::test {
 namespace {
 
-struct CorridorCase {
-    const char* mesh;
-    int features;
-    double twist;
-    std::uint32_t seed;
-};
-
-void check_corridor(std::initializer_list<CorridorCase> cases) {
-    for (const CorridorCase& k : cases) {
+void check_corridor(std::initializer_list<RandomSetCase> cases) {
+    for (const RandomSetCase& k : cases) {
         const TriMesh mesh = read_mesh(data(std::string("meshes/") + k.mesh));
         std::mt19937 rng(k.seed);
         const RandomFeatures rf = random_features(mesh, tutte_map(mesh), k.features, 8, k.twist, rng);

@@ -46,18 +46,11 @@ TEST(CutExact, NefertitiExample) {
               << s.exact_rejected << " replaced by the approximate search; length " << s.path_length << "\n";
 }
 
-struct ExactCase {
-    const char* mesh;
-    int features;
-    double twist;
-    std::uint32_t seed;
-};
-
 // Each exact path builds CGAL's sequence tree on the whole current mesh (0.1-0.7 s per path on
 // mushroom and lion-head): the cases stay on the smaller meshes.
-void random_feasible_sets(std::initializer_list<ExactCase> cases) {
+void random_feasible_sets(std::initializer_list<RandomSetCase> cases) {
     int paths = 0, exact = 0;
-    for (const ExactCase& k : cases) {
+    for (const RandomSetCase& k : cases) {
         const TriMesh mesh = read_mesh(data(std::string("meshes/") + k.mesh));
         std::mt19937 rng(k.seed);
         const RandomFeatures rf = random_features(mesh, tutte_map(mesh), k.features, 8, k.twist, rng);
