@@ -157,7 +157,7 @@ if [ "${CTMAP_FUZZ_REGRESSIONS_ONLY:-0}" = 1 ]; then
 fi
 echo "fuzz: ${#targets[@]} targets, ${seconds} s each, $((SECONDS - start)) s in all; logs in $runs"
 # CTMAP_FUZZ_REPORT_ONLY=1: what the campaign finds is printed but does not fail the run; a
-# regression input that fails still does (the test command uses this: see scripts/test.sh).
+# regression input that fails still does (for exploring by hand; the test command gates on every finding).
 if [ ${#failed[@]} -gt 0 ] && [ "${CTMAP_FUZZ_REPORT_ONLY:-0}" = 1 ] && [ ${#regressed[@]} -eq 0 ]; then
   echo "fuzz: FINDINGS (reported, not failing): ${failed[*]} (reproduce: $dir/fuzz/TARGET REPRODUCER)" >&2
   exit 0
