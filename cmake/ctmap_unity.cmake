@@ -41,7 +41,7 @@ function(ctmap_unity_sources out name batch)
     foreach(rel IN LISTS files_${key})
       string(APPEND content "#include \"${rel}\"\n")
       math(EXPR i "${i} + 1")
-      # the end of part p: the first round(n * (p + 1) / parts) files
+      # part p ends after the first ceil(n * (p + 1) / parts) files
       math(EXPR end "(${n} * (${part} + 1) + ${parts} - 1) / ${parts}")
       if(i EQUAL end)
         if(short STREQUAL name)
