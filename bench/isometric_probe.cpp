@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
     int levels = 0, features = 50, seed = 1, rounds = 0, iterations = 1000, rings = 3, local_iterations = 30;
     double hot = 0;
     double twist = 1.0;
+    double progressive = 0;
     for (int i = 2; i + 1 < argc; i += 2) {
         std::string a = argv[i];
         if (a == "--levels") levels = std::stoi(argv[i + 1]);
@@ -88,6 +89,7 @@ int main(int argc, char** argv) {
         if (a == "--local-iterations") local_iterations = std::stoi(argv[i + 1]);
         if (a == "--iterations") iterations = std::stoi(argv[i + 1]);
         if (a == "--twist") twist = std::stod(argv[i + 1]);
+        if (a == "--progressive") progressive = std::stod(argv[i + 1]);
     }
     const std::string base = path.substr(path.find_last_of('/') + 1);
     const std::string cache = "/tmp/probe_" + base + "_" + std::to_string(levels) + "_" + std::to_string(features) + "_" +
@@ -168,6 +170,7 @@ int main(int argc, char** argv) {
     IsometricOptions o;
     o.scale = scale;
     o.max_iterations = iterations;
+    o.progressive = progressive;
     double last = 0;
     o.on_iteration = [&](int it, const std::vector<Vec2>&, double e) {
         double now = ms_since(t0);

@@ -1,7 +1,7 @@
 // One row of the distortion optimiser's tables (issue 11): a real mesh, a random feasible
 // feature set (tests/random_features.h: `--features` N, `--twist` T, `--seed` S), ctmap's whole
 // pipeline with --refine isometric, the distortion at each stage (bare embedding, the paper's
-// relaxation, the optimiser), the same optimiser continued from there for a long run (1,000
+// relaxation, the optimiser), the same optimiser continued from there for a long run (2,000
 // iterations in all, tolerance 1e-9: the check that the default stopped at convergence), and,
 // with --arap, CGAL's unconstrained ARAP_parameterizer_3 on the same mesh timed in the same
 // process, alternating with ctmap's runs. Prints one JSON object. `--landmarks`: the random set
@@ -72,7 +72,8 @@ double cgal_arap_ms(const TriMesh& mesh, bool& ok, int& flipped, Distortion& dis
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::cerr << "usage: isometric_row MESH [--features N] [--twist T] [--seed S] [--runs R] [--arap] [--no-long] [--tolerance T] [--no-reuse]\n";
+        std::cerr << "usage: isometric_row MESH [--features N] [--twist T] [--seed S] [--runs R] [--arap] [--no-long] [--tolerance T] [--no-reuse]\n"
+                     "       [--progressive B] [--long-iterations N] [--no-paper]\n";
         return 2;
     }
     const std::string path = argv[1];
@@ -81,6 +82,9 @@ int main(int argc, char** argv) {
     double twist = 1.0;
     bool arap = false, long_run = true, reuse = true, landmarks = false;
     std::string features_file;
+    bool paper_run = true;
+    double progressive = IsometricOptions().progressive;
+    int long_iterations = 2000;
     double tolerance = IsometricOptions().tolerance;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
@@ -95,6 +99,9 @@ int main(int argc, char** argv) {
         else if (a == "--no-reuse") reuse = false;
         else if (a == "--landmarks") landmarks = true;
         else if (a == "--features-file") features_file = next();
+        else if (a == "--progressive") progressive = std::stod(next());
+        else if (a == "--long-iterations") long_iterations = std::stoi(next());
+        else if (a == "--no-paper") paper_run = false;
     }
     try {
         const TriMesh mesh = read_mesh(path);
@@ -121,11 +128,12 @@ int main(int argc, char** argv) {
             MapOptions options;
             options.isometric.tolerance = tolerance;
             options.isometric.reuse_hessian = reuse;
+            options.isometric.progressive = progressive;
             iso = map_texture(mesh, mf, options);
             iso_ms.push_back(iso.timings_ms.total);
             MapOptions paper;
             paper.refine_mode = RefineMode::paper;
-            paper_ms.push_back(map_texture(mesh, mf, paper).timings_ms.total);
+            if (paper_run) paper_ms.push_back(map_texture(mesh, mf, paper).timings_ms.total);
             if (arap) arap_ms.push_back(cgal_arap_ms(mesh, arap_ok, arap_flipped, arap_dist));
         }
         nlohmann::json j;
@@ -146,15 +154,15 @@ int main(int argc, char** argv) {
                             {"halvings", iso.isometric_stats.halvings},
                             {"exact_rejections", iso.isometric_stats.exact_rejections},
                             {"border_rejections", iso.isometric_stats.border_rejections},
-                            {"border_holds", iso.isometric_stats.border_holds}};
+                            {"scaffolds", iso.isometric_stats.scaffolds}};
         j["energy"] = iso.isometric_stats.energy_after();
         j["energy_per_iteration"] = iso.isometric_stats.energy;
         j["ms"] = {{"isometric", median(iso_ms)}, {"paper", median(paper_ms)}, {"optimise", iso.timings_ms.optimise}};
         if (long_run) {
-            // The same optimiser, continued from the default's map: up to 1,000 iterations in all.
+            // The same optimiser, continued from the default's map: up to `--long-iterations` (2,000) in all.
             std::vector<Vec2> uv = iso.uv;
             IsometricOptions lo;
-            lo.max_iterations = std::max(0, 1000 - iso.isometric_stats.iterations);
+            lo.max_iterations = std::max(0, long_iterations - iso.isometric_stats.iterations);
             lo.tolerance = 1e-9;
             lo.scale = iso.isometric_stats.scale;  // the same energy as the default's run
             const IsometricStats ls = optimise_isometric(iso.cut.mesh, uv, iso.cut.feature_vertex, lo);

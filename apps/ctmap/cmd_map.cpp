@@ -150,6 +150,14 @@ MapRun run_map(const MapArgs& a) {
     return run;
 }
 
+/// A warning on stderr (even with -q) when the optimiser stopped for a reason that is not
+/// convergence or the user's iteration cap: the map is valid, but not as good as it could be.
+void warn_optimiser_stop(const std::string& what, const IsometricStats& is) {
+    if (is.stop == "no descent step" || is.stop == "stalled")
+        std::cerr << "ctmap: warning: " << what << "the distortion optimiser stopped before converging (" << is.stop
+                  << ", after " << is.iterations << " iterations); the map is valid\n";
+}
+
 void print_map_summary(const MapArgs& a, const MapRun& run, std::ostream& os) {
     const MapResult& r = run.result;
     const Certificate& c = r.certificate;
@@ -251,10 +259,13 @@ Command add_map_command(CLI::App& app) {
     return {sub, [args] {
                 if (has_charts(read_input_file(args->features, "features file"), args->features)) {
                     const ChartsRun run = run_map_charts(*args);
+                    for (const ChartMap& c : run.result.charts)
+                        warn_optimiser_stop("chart '" + c.name + "': ", c.result.isometric_stats);
                     if (!args->quiet) print_charts_summary(*args, run, std::cout);
                     return kExitOk;
                 }
                 const MapRun run = run_map(*args);
+                warn_optimiser_stop("", run.result.isometric_stats);
                 if (!args->quiet) print_map_summary(*args, run, std::cout);
                 return kExitOk;
             }};

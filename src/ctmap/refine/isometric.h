@@ -8,7 +8,10 @@
 /// system (CHOLMOD, supernodal Cholesky; the symbolic analysis is done once, a factorisation is
 /// reused while its steps gain); and a line search towards the solution, never past
 /// the largest flip-free step (flip_free_step.h), taking a step only if it lowers the energy, the
-/// exact orientation predicates agree on every triangle and the border guard accepts it.
+/// exact orientation predicates agree on every triangle and the border guard accepts it
+/// (line_search.h). A free border is kept apart from itself by a scaffold (scaffold.h), so a
+/// contact never stops it; a very distorted start can be measured against progressive references
+/// first (progressive_reference.h). The set-up is isometric_problem.h.
 #include <functional>
 #include <string>
 #include <vector>
@@ -36,6 +39,10 @@ struct IsometricOptions {
     /// Check that the UV border stays simple (border_guard.h). Only tests switch it off, to show
     /// what it prevents.
     bool check_border = true;
+    /// The free border's scaffold (scaffold.h, with `check_border`) keeps two parts of the border
+    /// apart, so a contact never stops the optimiser: the weight of each of its triangles'
+    /// barrier, in units of an average face's share of the energy.
+    double scaffold_weight = 1.0;
     /// Keep the free border in that rectangle; off (`--border-mode unbounded`), only simple.
     bool keep_in_box = true;
     /// Reuse the Hessian's factorisation for the next steps while they are whole steps that gain
@@ -43,6 +50,10 @@ struct IsometricOptions {
     /// cost a solve instead of a factorisation. Off: a new Hessian every iteration (plain
     /// projected Newton).
     bool reuse_hessian = true;
+    /// The progressive reference (Liu et al. 2018): while > 0, each face's energy is measured
+    /// against a reference between its 3D triangle and its UV one whose distortion to the map is at
+    /// most this (symmetric Dirichlet / 4 per face); 0: always against the 3D triangle.
+    double progressive = 0;
     bool parallel = true;  ///< per-face work with TBB (the result is the same bit for bit either way)
     /// The factor the mesh is scaled by in the energy (the energy is not scale invariant). 0: the
     /// one that makes the mesh's area the map's UV area on entry. A run continued from another's
@@ -64,18 +75,16 @@ struct IsometricStats {
     int iterations = 0;           ///< accepted iterations
     std::vector<double> energy;   ///< energy[0] on entry, energy[i] after iteration i
     bool converged = false;       ///< stopped by the tolerance (or at a point no step can improve)
-    /// "tolerance", "iterations", "no descent step" (neither the Newton step nor the steepest
-    /// descent step lowers the energy), "border contact" (the free border touches
-    /// itself and five steps in a row that it held gained less than the tolerance), "stalled" (ten steps in a row
-    /// with a new Hessian gained less than 1e-12 of the energy each: a vertex pinned by the barrier), "no free vertex"
+    /// "tolerance" (converged), "iterations" (the cap), "no free vertex"; and the defects:
+    /// "no descent step" (neither the Newton step nor the steepest descent step lowers the
+    /// energy), "stalled" (ten steps in a row with a new Hessian gained less than 1e-12 of the
+    /// energy each)
     std::string stop;
     int factorisations = 0;       ///< numeric Cholesky factorisations (the dominant cost)
+    int scaffolds = 0;            ///< scaffolds built (the free border's, scaffold.h)
     long halvings = 0;            ///< line-search step halvings in all
     long exact_rejections = 0;    ///< trial steps the floating-point test passed and the exact predicates refused
     long border_rejections = 0;   ///< trial steps the border guard refused
-    /// times border vertices at a contact were held (they then stay fixed for five iterations,
-    /// the Newton system solved with them fixed)
-    long border_holds = 0;
     /// steepest descent steps: tried when a new Hessian's step failed or was cut below 1e-3 by
     /// the flip-free bound (it then points into a face about to collapse)
     int steepest_steps = 0;
