@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
                             {"halvings", iso.isometric_stats.halvings},
                             {"exact_rejections", iso.isometric_stats.exact_rejections},
                             {"border_rejections", iso.isometric_stats.border_rejections},
-                            {"scaffolds", iso.isometric_stats.scaffolds}};
+                            {"border_holds", iso.isometric_stats.border_holds}};
         j["energy"] = iso.isometric_stats.energy_after();
         j["energy_per_iteration"] = iso.isometric_stats.energy;
         j["ms"] = {{"isometric", median(iso_ms)}, {"paper", median(paper_ms)}, {"optimise", iso.timings_ms.optimise}};

@@ -153,7 +153,7 @@ MapRun run_map(const MapArgs& a) {
 /// A warning on stderr (even with -q) when the optimiser stopped for a reason that is not
 /// convergence or the user's iteration cap: the map is valid, but not as good as it could be.
 void warn_optimiser_stop(const std::string& what, const IsometricStats& is) {
-    if (is.stop == "no descent step" || is.stop == "stalled")
+    if (is.stop == "no descent step" || is.stop == "stalled" || is.stop == "border contact")
         std::cerr << "ctmap: warning: " << what << "the distortion optimiser stopped before converging (" << is.stop
                   << ", after " << is.iterations << " iterations); the map is valid\n";
 }

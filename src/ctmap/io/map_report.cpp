@@ -90,7 +90,7 @@ nlohmann::json map_report(const MapResult& r, const MapReportInputs& in) {
                           {"halvings", o.halvings},
                           {"exact_rejections", o.exact_rejections},
                           {"border_rejections", o.border_rejections},
-                          {"scaffolds", o.scaffolds},
+                          {"border_holds", o.border_holds},
                           {"free_vertices", o.free_vertices},
                           {"sliding_vertices", o.sliding_vertices}};
     } else {

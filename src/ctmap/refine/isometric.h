@@ -9,9 +9,8 @@
 /// reused while its steps gain); and a line search towards the solution, never past
 /// the largest flip-free step (flip_free_step.h), taking a step only if it lowers the energy, the
 /// exact orientation predicates agree on every triangle and the border guard accepts it
-/// (line_search.h). A free border is kept apart from itself by a scaffold (scaffold.h), so a
-/// contact never stops it; a very distorted start can be measured against progressive references
-/// first (progressive_reference.h). The set-up is isometric_problem.h.
+/// (line_search.h). A very distorted start can be measured against progressive references first
+/// (progressive_reference.h). The set-up is isometric_problem.h.
 #include <functional>
 #include <string>
 #include <vector>
@@ -39,10 +38,6 @@ struct IsometricOptions {
     /// Check that the UV border stays simple (border_guard.h). Only tests switch it off, to show
     /// what it prevents.
     bool check_border = true;
-    /// The free border's scaffold (scaffold.h, with `check_border`) keeps two parts of the border
-    /// apart, so a contact never stops the optimiser: the weight of each of its triangles'
-    /// barrier, in units of an average face's share of the energy.
-    double scaffold_weight = 1.0;
     /// Keep the free border in that rectangle; off (`--border-mode unbounded`), only simple.
     bool keep_in_box = true;
     /// Reuse the Hessian's factorisation for the next steps while they are whole steps that gain
@@ -75,13 +70,16 @@ struct IsometricStats {
     int iterations = 0;           ///< accepted iterations
     std::vector<double> energy;   ///< energy[0] on entry, energy[i] after iteration i
     bool converged = false;       ///< stopped by the tolerance (or at a point no step can improve)
-    /// "tolerance" (converged), "iterations" (the cap), "no free vertex"; and the defects:
-    /// "no descent step" (neither the Newton step nor the steepest descent step lowers the
-    /// energy), "stalled" (ten steps in a row with a new Hessian gained less than 1e-12 of the
-    /// energy each)
+    /// "tolerance" (converged), "iterations" (the cap), "no free vertex"; and short of
+    /// convergence (`ctmap map` warns): "no descent step" (neither the Newton step nor the
+    /// steepest descent step lowers the energy), "border contact" (the free border touches itself
+    /// and five steps in a row that it held gained less than the tolerance), "stalled" (ten steps
+    /// in a row with a new Hessian gained less than 1e-12 of the energy each)
     std::string stop;
     int factorisations = 0;       ///< numeric Cholesky factorisations (the dominant cost)
-    int scaffolds = 0;            ///< scaffolds built (the free border's, scaffold.h)
+    /// times border vertices at a contact were held (they then stay fixed for five iterations,
+    /// the Newton system solved with them fixed)
+    long border_holds = 0;
     long halvings = 0;            ///< line-search step halvings in all
     long exact_rejections = 0;    ///< trial steps the floating-point test passed and the exact predicates refused
     long border_rejections = 0;   ///< trial steps the border guard refused

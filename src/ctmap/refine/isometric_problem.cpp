@@ -58,8 +58,6 @@ IsometricProblem make_isometric_problem(const TriMesh& mesh, const std::vector<V
         throw BadInput("", "optimise_isometric: the scale must be a finite number >= 0");
     if (!(o.progressive == 0 || o.progressive > 1) || !std::isfinite(o.progressive))
         throw BadInput("", "optimise_isometric: the progressive bound must be 0 (off) or a finite number > 1");
-    if (!(o.scaffold_weight > 0) || !std::isfinite(o.scaffold_weight))
-        throw BadInput("", "optimise_isometric: the scaffold's weight must be a finite number > 0");
     if (nf == 0) {
         p.nothing = "no free vertex";
         return p;
@@ -219,7 +217,6 @@ IsometricProblem make_isometric_problem(const TriMesh& mesh, const std::vector<V
     double eps = 0;
     for (std::size_t i = 0; i < loop.size(); ++i) eps += (uv[loop[i]] - uv[loop[(i + 1) % loop.size()]]).norm();
     if (!loop.empty()) eps /= 10.0 * double(loop.size());
-    p.border_edge = 10 * eps;
     if (o.border == BorderMode::free)
         for (int f = 0; f < nf; ++f)
             for (int v : mesh.faces[f])

@@ -31,7 +31,6 @@ struct IsometricProblem {
     int unknowns = 0, free_vertices = 0, sliding_vertices = 0;
     Vec2 box_lo, box_hi;           ///< the rectangle the free border stays in (infinite if unbounded)
     std::unique_ptr<BoxBarrier> barrier;
-    double border_edge = 0;        ///< the mean UV border edge on entry (the barriers' scale)
     /// Why there is nothing to optimise ("no free vertex"), or empty.
     std::string nothing;
 
