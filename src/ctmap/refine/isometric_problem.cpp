@@ -13,23 +13,6 @@
 
 namespace ctmap {
 
-double chunked_sum(int n, bool parallel, const std::function<double(int)>& term) {
-    constexpr int kChunk = 4096;
-    const int chunks = (n + kChunk - 1) / kChunk;
-    std::vector<double> part(chunks, 0.0);
-    auto run = [&](int c) {
-        double s = 0;
-        const int end = std::min(n, (c + 1) * kChunk);
-        for (int i = c * kChunk; i < end; ++i) s += term(i);
-        part[c] = s;
-    };
-    if (parallel) tbb::parallel_for(0, chunks, run);
-    else for (int c = 0; c < chunks; ++c) run(c);
-    double s = 0;
-    for (double p : part) s += p;
-    return s;
-}
-
 namespace {
 
 /// A face's term of the energy (before the division by the total area).

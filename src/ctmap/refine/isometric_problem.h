@@ -4,6 +4,9 @@
 /// call: which vertices move and how (their unknowns, numbered in a fill-reducing order), the
 /// faces whose energy can change with their 3D frames scaled to the map's UV area, the image
 /// rectangle with the free border's barrier, and the energy.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -42,7 +45,23 @@ struct IsometricProblem {
 IsometricProblem make_isometric_problem(const TriMesh& mesh, const std::vector<Vec2>& uv,
                                         const std::vector<int>& fixed, const IsometricOptions& options);
 
-/// Sums over n terms in fixed chunks added in order: the same bits whatever the threads.
-double chunked_sum(int n, bool parallel, const std::function<double(int)>& term);
+/// Sums term(0 .. n-1) in fixed chunks added in order: the same bits whatever the threads.
+template <class F>
+double chunked_sum(int n, bool parallel, F&& term) {
+    constexpr int kChunk = 4096;
+    const int chunks = (n + kChunk - 1) / kChunk;
+    std::vector<double> part(chunks, 0.0);
+    auto run = [&](int c) {
+        double s = 0;
+        const int end = std::min(n, (c + 1) * kChunk);
+        for (int i = c * kChunk; i < end; ++i) s += term(i);
+        part[c] = s;
+    };
+    if (parallel) tbb::parallel_for(0, chunks, run);
+    else for (int c = 0; c < chunks; ++c) run(c);
+    double s = 0;
+    for (double p : part) s += p;
+    return s;
+}
 
 }  // namespace ctmap
