@@ -169,7 +169,7 @@ TEST(BadInputCharts, RegionHoldsAnotherChartsFeature) {
                        f["name"] = "stray";
                        chart(j, "back")["features"].push_back(f);
                    },
-                   {"'back'", "interior features"});
+                   {"chart 'back'", "'stray'", "outside its border", "the seam from"});
 }
 
 TEST(BadInputCharts, BorderFeaturesCrossInTheImage) {

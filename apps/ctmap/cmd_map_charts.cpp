@@ -146,7 +146,8 @@ ChartsRun run_map_charts(const MapArgs& a) {
                        {"input_faces", mesh.num_faces()},
                        {"vertices", tm.mesh.num_vertices()},
                        {"faces", tm.mesh.num_faces()},
-                       {"seam_pieces", run.result.seams.size()}};
+                       {"seam_pieces", run.result.seams.size()},
+                       {"seam_pieces_rerouted", run.result.seams_rerouted}};
         const MapTimings& t = run.result.timings_ms;
         j["timings_ms"] = {{"read", t.read},     {"triangulate", t.triangulate}, {"paths", t.paths},
                            {"embed", t.embed},   {"refine", t.refine},           {"optimise", t.optimise},
@@ -188,7 +189,9 @@ void print_charts_summary(const MapArgs&, const ChartsRun& run, std::ostream& os
     if (r.rest.faces > 0)
         os << "  the rest: " << r.rest.faces << " faces in no chart, " << r.rest.pieces << " piece(s) cut into discs ("
            << r.rest.cut_edges << " edges cut), mapped automatically with material rest (a checker)\n";
-    os << "  " << r.seams.size() << " seam pieces, " << r.textured.mesh.num_vertices() << " vertices, "
+    os << "  " << r.seams.size() << " seam pieces";
+    if (r.seams_rerouted > 0) os << " (" << r.seams_rerouted << " traced round a feature to keep it on its chart's side)";
+    os << ", " << r.textured.mesh.num_vertices() << " vertices, "
        << r.textured.mesh.num_faces() << " faces\n"
        << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate
        << " degenerate, feature error " << c.feature_max_error << " over " << r.occurrences.size()
@@ -230,7 +233,9 @@ int validate_charts(const std::string& mesh_path, const std::string& features_pa
     if (r.rest.faces > 0)
         std::cout << "  the rest: " << r.rest.faces << " faces in no chart, mapped automatically (" << r.rest.pieces
                   << " piece(s))\n";
-    std::cout << "  " << r.seams.size() << " seam pieces\n";
+    std::cout << "  " << r.seams.size() << " seam pieces";
+    if (r.seams_rerouted > 0) std::cout << " (" << r.seams_rerouted << " traced round a feature to keep it on its chart's side)";
+    std::cout << "\n";
     return kExitOk;
 }
 

@@ -299,6 +299,7 @@ ChartsResult map_charts(const TriMesh& input, const std::vector<ChartInput>& cha
         out.charts.push_back(std::move(cm));
     }
     for (const std::vector<int>& s : regions.seams) out.seams.push_back(s);  // seam vertices keep their indices
+    out.seams_rerouted = regions.rerouted;
     // The faces in no chart: mapped automatically as chart `charts.size()` ("rest").
     t0 = Clock::now();
     if (options.progress) options.progress("the rest", 0, 0);

@@ -55,6 +55,7 @@ struct ChartsResult {
     std::vector<ChartMap> charts;
     std::vector<FeatureOccurrence> occurrences;
     std::vector<std::vector<int>> seams;  ///< the seam pieces as vertex paths of textured.mesh
+    int seams_rerouted = 0;               ///< pieces traced again round a feature (chart_regions)
     Certificate certificate;              ///< of the whole map, per chart (certify's feature_chart)
     MapTimings timings_ms;                ///< summed over the charts, plus the seams in `paths`
     RestMap rest;                         ///< the faces in no chart

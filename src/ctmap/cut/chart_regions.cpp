@@ -1,12 +1,13 @@
 #include "ctmap/cut/chart_regions.h"
 
 #include <algorithm>
-#include <limits>
+#include <exception>
 #include <map>
-#include <queue>
 #include <set>
-#include <unordered_map>
 
+#include "ctmap/cut/seam_guide.h"
+#include "ctmap/cut/seam_paths.h"
+#include "ctmap/cut/seam_sides.h"
 #include "ctmap/cut/work_mesh.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/mesh_topology.h"
@@ -15,85 +16,45 @@
 namespace ctmap {
 namespace {
 
-std::uint64_t directed_key(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
-
-/// The mesh's directed edges (a -> b inside face f) and vertex neighbours.
-struct Adjacency {
-    std::unordered_map<std::uint64_t, int> face_of;  ///< directed edge -> the face on its left
-    std::vector<std::vector<int>> neighbours;
-    std::vector<char> on_border;
-
-    explicit Adjacency(const TriMesh& m) : neighbours(m.positions.size()), on_border(m.positions.size(), 0) {
-        face_of.reserve(3 * m.faces.size());
-        for (int f = 0; f < m.num_faces(); ++f)
-            for (int k = 0; k < 3; ++k) {
-                const int a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
-                face_of[directed_key(a, b)] = f;
-                neighbours[a].push_back(b);
-            }
-        for (int f = 0; f < m.num_faces(); ++f)
-            for (int k = 0; k < 3; ++k) {
-                const int a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
-                if (!face_of.count(directed_key(b, a))) {
-                    on_border[a] = on_border[b] = 1;
-                    neighbours[b].push_back(a);  // a border edge is listed from one side only
-                }
-            }
+/// Every chart's border traced as seam pieces, each pair of consecutive border features once
+/// (by the first chart that lists it): along the mesh border where both lie on it with no other
+/// feature between them, else a shortest path (with `weight`, if given).
+SeamLayout trace_seams(const TriMesh& mesh, const SeamGraph& graph, const std::vector<ChartOutline>& charts,
+                       const std::vector<double>* weight) {
+    SeamLayout layout;
+    layout.blocked.assign(mesh.num_vertices(), 0);
+    for (const ChartOutline& c : charts) {
+        for (int v : c.border) layout.blocked[v] = 1;
+        for (int v : c.interior) layout.blocked[v] = 1;
     }
-    int left(int a, int b) const {
-        const auto it = face_of.find(directed_key(a, b));
-        return it == face_of.end() ? -1 : it->second;
-    }
-};
-
-/// The border arc from a to b (both on the mesh border) that meets no blocked vertex, or empty.
-std::vector<int> border_arc(const TriMesh& mesh, const Adjacency& adj, int a, int b, const std::vector<char>& blocked) {
-    // The next border vertex after v (interior on the left): the b of the border edge v -> b.
-    auto next = [&](int v, bool forward) {
-        for (int w : adj.neighbours[v])
-            if (forward ? (adj.left(v, w) >= 0 && adj.left(w, v) < 0) : (adj.left(w, v) >= 0 && adj.left(v, w) < 0))
-                return w;
-        return -1;
-    };
-    for (bool forward : {true, false}) {
-        std::vector<int> path{a};
-        for (int v = next(a, forward), steps = 0; v >= 0 && steps <= mesh.num_vertices(); v = next(v, forward), ++steps) {
-            path.push_back(v);
-            if (v == b) return path;
-            if (blocked[v] || v == a) break;
+    std::map<std::uint64_t, int> piece_of;  // undirected feature pair -> seam index
+    layout.chart_pieces.resize(charts.size());
+    for (std::size_t c = 0; c < charts.size(); ++c) {
+        const ChartOutline& ch = charts[c];
+        for (std::size_t i = 0; i < ch.border.size(); ++i) {
+            const int a = ch.border[i], b = ch.border[(i + 1) % ch.border.size()];
+            auto it = piece_of.find(edge_key(a, b));
+            if (it == piece_of.end()) {
+                std::vector<int> path;
+                if (graph.on_border[a] && graph.on_border[b]) path = border_arc(mesh, graph, a, b, layout.blocked);
+                const bool movable = path.empty();
+                if (movable) path = seam_shortest_path(mesh, graph, a, b, layout.blocked, layout.seam_edges, weight);
+                if (path.empty())
+                    throw BadInput("", "chart " + quoted_name(ch.name) + ": no seam joins its border features " +
+                                           quoted_name(ch.border_names[i]) + " and " +
+                                           quoted_name(ch.border_names[(i + 1) % ch.border.size()]) +
+                                           " without touching another feature or seam (move one, or list the border "
+                                           "in another order)");
+                for (std::size_t k = 1; k + 1 < path.size(); ++k) layout.blocked[path[k]] = 1;
+                for (std::size_t k = 0; k + 1 < path.size(); ++k) layout.seam_edges.insert(edge_key(path[k], path[k + 1]));
+                it = piece_of.emplace(edge_key(a, b), int(layout.pieces.size())).first;
+                layout.pieces.push_back(std::move(path));
+                layout.movable.push_back(movable);
+            }
+            layout.chart_pieces[c].push_back({it->second, layout.pieces[it->second].front() == a});
         }
     }
-    return {};
-}
-
-/// A shortest path a -> b along mesh edges through free interior vertices (Dijkstra), or empty.
-std::vector<int> shortest_path(const TriMesh& mesh, const Adjacency& adj, int a, int b, const std::vector<char>& blocked,
-                               const std::set<std::uint64_t>& seam_edges) {
-    const int n = mesh.num_vertices();
-    std::vector<double> dist(n, std::numeric_limits<double>::infinity());
-    std::vector<int> from(n, -1);
-    using Item = std::pair<double, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-    dist[a] = 0;
-    queue.push({0, a});
-    while (!queue.empty()) {
-        const auto [d, v] = queue.top();
-        queue.pop();
-        if (d > dist[v]) continue;
-        if (v == b) break;
-        if (v != a && (blocked[v] || adj.on_border[v])) continue;  // passes through free interior vertices only
-        for (int w : adj.neighbours[v]) {
-            if (w != b && (blocked[w] || adj.on_border[w])) continue;
-            if (seam_edges.count(edge_key(v, w))) continue;
-            const double nd = d + (mesh.positions[w] - mesh.positions[v]).norm();
-            if (nd < dist[w]) dist[w] = nd, from[w] = v, queue.push({nd, w});
-        }
-    }
-    if (from[b] < 0) return {};
-    std::vector<int> path;
-    for (int v = b; v >= 0; v = from[v]) path.push_back(v);
-    std::reverse(path.begin(), path.end());
-    return path;
+    return layout;
 }
 
 /// The cyclic order of `names` restricted to `common`, starting at its smallest name.
@@ -150,109 +111,50 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
                 throw BadInput("", "feature " + quoted_name(c.interior_names[i]) + " is inside chart " + quoted_name(c.name) +
                                        " but on the border of chart " + quoted_name(it->second.second) +
                                        ": a feature on a seam is a border feature of every chart it is in");
-    const Adjacency adj(mesh);
-    std::vector<char> blocked(nv, 0);
+    const SeamGraph graph(mesh);
     std::map<int, std::string> feature_name;
     for (const ChartOutline& c : charts) {
-        for (std::size_t i = 0; i < c.border.size(); ++i) blocked[c.border[i]] = 1, feature_name[c.border[i]] = c.border_names[i];
-        for (std::size_t i = 0; i < c.interior.size(); ++i)
-            blocked[c.interior[i]] = 1, feature_name[c.interior[i]] = c.interior_names[i];
+        for (std::size_t i = 0; i < c.border.size(); ++i) feature_name[c.border[i]] = c.border_names[i];
+        for (std::size_t i = 0; i < c.interior.size(); ++i) feature_name[c.interior[i]] = c.interior_names[i];
     }
-
-    // The seam pieces, each traced once (by the first chart that lists its pair).
+    // The shortest seams; where they leave a feature outside its chart, pieces are traced again
+    // round it. If that finds no seams, the same from seams drawn to where the charts' regions,
+    // grown from their features, meet; the first attempt's error is the one reported.
+    SeamLayout layout;
+    std::exception_ptr first;
+    try {
+        layout = trace_seams(mesh, graph, charts, nullptr);
+        keep_features_on_their_sides(mesh, graph, charts, layout);
+    } catch (const BadInput&) {
+        first = std::current_exception();
+    }
+    bool guided = false;
+    for (double strength : {8.0, 64.0}) {
+        if (!first || guided) break;
+        const std::vector<double> weight = seam_guide_weights(mesh, graph, charts, strength);
+        if (weight.empty()) break;
+        try {
+            layout = trace_seams(mesh, graph, charts, &weight);
+            keep_features_on_their_sides(mesh, graph, charts, layout);
+            guided = true;
+        } catch (const BadInput&) {
+        }
+    }
+    if (first && !guided) std::rethrow_exception(first);
+    if (guided)  // every piece through the interior was traced by the guide
+        for (std::size_t k = 0; k < layout.pieces.size(); ++k)
+            if (layout.movable[k]) layout.rerouted.insert(int(k));
     ChartRegions out;
-    std::map<std::uint64_t, int> piece_of;  // undirected feature pair -> seam index
-    std::set<std::uint64_t> seam_edges;
-    std::vector<std::vector<int>> loops(charts.size());  // per chart, its border loop as vertices in its order
-    for (std::size_t c = 0; c < charts.size(); ++c) {
-        const ChartOutline& ch = charts[c];
-        for (std::size_t i = 0; i < ch.border.size(); ++i) {
-            const int a = ch.border[i], b = ch.border[(i + 1) % ch.border.size()];
-            auto it = piece_of.find(edge_key(a, b));
-            if (it == piece_of.end()) {
-                std::vector<int> path;
-                if (adj.on_border[a] && adj.on_border[b]) path = border_arc(mesh, adj, a, b, blocked);
-                if (path.empty()) path = shortest_path(mesh, adj, a, b, blocked, seam_edges);
-                if (path.empty())
-                    throw BadInput("", "chart " + quoted_name(ch.name) + ": no seam joins its border features " +
-                                           quoted_name(ch.border_names[i]) + " and " +
-                                           quoted_name(ch.border_names[(i + 1) % ch.border.size()]) +
-                                           " without touching another feature or seam (move one, or list the border "
-                                           "in another order)");
-                for (std::size_t k = 1; k + 1 < path.size(); ++k) blocked[path[k]] = 1;
-                for (std::size_t k = 0; k + 1 < path.size(); ++k) seam_edges.insert(edge_key(path[k], path[k + 1]));
-                it = piece_of.emplace(edge_key(a, b), int(out.seams.size())).first;
-                out.seams.push_back(std::move(path));
-            }
-            std::vector<int> piece = out.seams[it->second];
-            if (piece.front() != a) std::reverse(piece.begin(), piece.end());
-            loops[c].insert(loops[c].end(), piece.begin(), piece.end() - 1);
-        }
-    }
-
-    // Faces fall apart along the seams (and the mesh border) into components.
-    std::vector<int> component(nf, -1);
-    int components = 0;
-    for (int f0 = 0; f0 < nf; ++f0) {
-        if (component[f0] >= 0) continue;
-        std::vector<int> stack{f0};
-        component[f0] = components;
-        while (!stack.empty()) {
-            const int f = stack.back();
-            stack.pop_back();
-            for (int k = 0; k < 3; ++k) {
-                const int a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
-                if (seam_edges.count(edge_key(a, b))) continue;
-                const int g = adj.left(b, a);
-                if (g >= 0 && component[g] < 0) component[g] = components, stack.push_back(g);
-            }
-        }
-        ++components;
-    }
-
-    // Each chart's side: where its interior features are, else by the image's orientation.
-    std::vector<int> a_face(nv, 0);
-    for (int f = 0; f < nf; ++f)
-        for (int v : mesh.faces[f]) a_face[v] = f;
-    std::vector<int> chart_of_component(components, -1);
+    const ChartSides sides = chart_sides(mesh, graph, charts, layout);
+    if (!sides.error.empty()) throw BadInput("", sides.error);
+    out.seams = layout.pieces;
+    out.rerouted = int(layout.rerouted.size());
+    std::vector<std::vector<int>> loops(charts.size());
+    for (std::size_t c = 0; c < charts.size(); ++c) loops[c] = chart_loop(layout, int(c));
+    std::vector<int> chart_of_component(sides.components, -1);
+    for (std::size_t c = 0; c < charts.size(); ++c) chart_of_component[sides.side[c]] = int(c);
     out.face_chart.assign(nf, -1);
-    // Charts with interior features first: they decide their side; a chart without any then
-    // takes the side its image's orientation says, or the other one if that is taken (a mirrored
-    // chart of a closed mesh's second half).
-    std::vector<std::size_t> order;
-    for (int pass = 0; pass < 2; ++pass)
-        for (std::size_t c = 0; c < charts.size(); ++c)
-            if (charts[c].interior.empty() == (pass == 1)) order.push_back(c);
-    for (std::size_t c : order) {
-        const ChartOutline& ch = charts[c];
-        const std::vector<int>& loop = loops[c];
-        const int left = adj.left(loop[0], loop[1]), right = adj.left(loop[1], loop[0]);
-        const int left_side = left >= 0 ? component[left] : -1, right_side = right >= 0 ? component[right] : -1;
-        if (left_side >= 0 && left_side == right_side)
-            throw BadInput("", "chart " + quoted_name(ch.name) + ": its border does not cut the mesh in two (a handle of the "
-                                   "mesh passes through it), so its region is not a disc: put the border round a "
-                                   "disc of the mesh");
-        std::set<int> sides;
-        for (int v : ch.interior) sides.insert(component[a_face[v]]);  // v is on no seam: its faces are one side
-        if (sides.size() > 1)
-            throw BadInput("", "chart " + quoted_name(ch.name) + ": its interior features lie on both sides of its border "
-                                   "on the mesh; each chart's interior features must be inside its border");
-        int side = -1;
-        if (!sides.empty()) {
-            side = *sides.begin();
-            if (side != left_side && side != right_side)
-                throw BadInput("", "chart " + quoted_name(ch.name) + ": its interior features are not beside its border on "
-                                       "the mesh; each chart's interior features must be inside its border");
-        } else {
-            const int preferred = ch.image_ccw ? left_side : right_side, other = ch.image_ccw ? right_side : left_side;
-            side = preferred >= 0 && chart_of_component[preferred] < 0 ? preferred : other >= 0 ? other : preferred;
-        }
-        if (side < 0) throw BadInput("", "chart " + quoted_name(ch.name) + ": its border has no face beside it");
-        if (chart_of_component[side] >= 0)
-            throw BadInput("", "charts " + quoted_name(charts[chart_of_component[side]].name) + " and " + quoted_name(ch.name) +
-                                   " both take the same region of the mesh");
-        chart_of_component[side] = int(c);
-    }
+    const std::vector<int>& component = sides.component;
     for (int f = 0; f < nf; ++f) out.face_chart[f] = chart_of_component[component[f]];
 
     // Each region as a mesh of its own; a disc bounded by its chart's loop, holding exactly the

@@ -6,19 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "ctmap/cut/chart_outline.h"
 #include "ctmap/mesh.h"
 
 namespace ctmap {
-
-/// One chart as the seams need it: its features' vertices (of the mesh given to chart_regions).
-struct ChartOutline {
-    std::string name;
-    std::vector<int> border;                ///< border feature vertices, in order around the image polygon
-    std::vector<std::string> border_names;  ///< their names, for messages
-    std::vector<int> interior;              ///< the chart's other feature vertices
-    std::vector<std::string> interior_names;
-    bool image_ccw = true;  ///< the border's image polygon runs counter-clockwise (UV, v up)
-};
 
 /// One chart's region: a disc of the mesh's faces.
 struct ChartRegion {
@@ -32,6 +23,7 @@ struct ChartRegions {
     std::vector<ChartRegion> charts;           ///< per chart, in the outlines' order
     std::vector<int> face_chart;               ///< per face of the mesh: its chart, or -1 (in no chart)
     std::vector<std::vector<int>> seams;       ///< the traced seam pieces, as vertex paths
+    int rerouted = 0;                          ///< pieces traced again to keep features on their sides
 };
 
 /// Traces every chart's border on the mesh and splits the mesh along it. Consecutive border
@@ -40,10 +32,14 @@ struct ChartRegions {
 /// border; two charts that list the same consecutive pair share that piece. A chart's region is
 /// the side of its border loop that holds its interior features (without any: the side on the
 /// left of the loop when its image polygon runs counter-clockwise, so the map is not mirrored).
+/// Where a shortest piece passes on the wrong side of an interior feature, the piece is traced
+/// again round it (cut/seam_sides.h), so any layout whose seams can keep every feature on its
+/// chart's side gets such seams.
 /// \pre `mesh` is a consistently oriented manifold; every vertex index in range; every chart
 ///      has at least 3 border features.
 /// \throw BadInput naming the charts and features: two charts listing common border features
-///        in different cyclic orders, no seam path, a region that is not a disc bounded by its
+///        in different cyclic orders, no seam path, no seam route that keeps a feature on its
+///        chart's side (the feature, its chart, the seam segment and the way round), a region that is not a disc bounded by its
 ///        chart's border, a region holding another chart's features or missing one of its own,
 ///        two charts on one region.
 ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>& charts);
