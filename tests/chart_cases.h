@@ -71,18 +71,7 @@ inline TwoChartCase two_chart_case(const TriMesh& mesh, int seam_count, int inte
         for (int v : candidates) {
             if (added >= interior) break;
             const Vec2 q = image(v);
-            // Clear of the border polygon (the input rule for interior features).
-            int winding = 0;
-            bool clear = true;
-            for (std::size_t i = 0; i < polygon.size() && clear; ++i) {
-                const Vec2 a = polygon[i], b = polygon[(i + 1) % polygon.size()], ab = b - a;
-                const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-                clear = (a + t * ab - q).norm() >= 1e-3;
-                const double cross = ab.x() * (q.y() - a.y()) - ab.y() * (q.x() - a.x());
-                if (a.y() <= q.y() && b.y() > q.y() && cross > 0) ++winding;
-                if (a.y() > q.y() && b.y() <= q.y() && cross < 0) --winding;
-            }
-            if (!clear || winding == 0) continue;
+            if (!clear_inside(polygon, q)) continue;  // the input rule for interior features
             MapFeature f;
             f.name = ch.name + "_" + std::to_string(added++);
             f.vertex = r.global[v];

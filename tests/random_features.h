@@ -23,6 +23,21 @@ inline Vec2 twist(const Vec2& p, double strength) {
     return Vec2(r * std::cos(a), r * std::sin(a));
 }
 
+/// Whether q lies inside `polygon` (non-zero winding) and at least `margin` from its sides: the
+/// input rule for an interior feature of a chart whose border polygon this is.
+inline bool clear_inside(const std::vector<Vec2>& polygon, const Vec2& q, double margin = 1e-3) {
+    int winding = 0;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const Vec2 a = polygon[i], b = polygon[(i + 1) % polygon.size()], ab = b - a;
+        const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        if ((a + t * ab - q).norm() < margin) return false;
+        const double cross = ab.x() * (q.y() - a.y()) - ab.y() * (q.x() - a.x());
+        if (a.y() <= q.y() && b.y() > q.y() && cross > 0) ++winding;
+        if (a.y() > q.y() && b.y() <= q.y() && cross < 0) --winding;
+    }
+    return winding != 0;
+}
+
 /// One random feature set of a sweep: `features` on `mesh` (from data/meshes), twisted by `twist`,
 /// drawn from `seed` (random_features with 8 border features).
 struct RandomSetCase {

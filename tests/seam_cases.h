@@ -135,18 +135,9 @@ inline ChartInput chart_on_disc(const std::string& name, const FaceDisc& disc, c
     for (int v : candidates) {
         if (added >= interior) break;
         const Vec2 q = image(v);
-        int winding = 0;
-        bool clear = true;
-        for (std::size_t i = 0; i < polygon.size() && clear; ++i) {
-            const Vec2 a = polygon[i], b = polygon[(i + 1) % polygon.size()], ab = b - a;
-            const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-            clear = (a + t * ab - q).norm() >= 1e-3;
-            const double cross = ab.x() * (q.y() - a.y()) - ab.y() * (q.x() - a.x());
-            if (a.y() <= q.y() && b.y() > q.y() && cross > 0) ++winding;
-            if (a.y() > q.y() && b.y() <= q.y() && cross < 0) --winding;
-        }
+        bool clear = clear_inside(polygon, q);
         for (const MapFeature& f : ch.features) clear = clear && (f.uv - q).norm() >= 1e-3;
-        if (!clear || winding == 0) continue;
+        if (!clear) continue;
         MapFeature f;
         f.name = name + "_" + std::to_string(added++);
         f.vertex = disc.global[v];
@@ -188,6 +179,13 @@ inline std::vector<int> seam_on(const FaceDisc& disc, int count, std::mt19937& r
     return seam;
 }
 
+/// seam0, seam1, ...: the seam features' names.
+inline std::vector<std::string> seam_names(std::size_t n) {
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < n; ++i) out.push_back("seam" + std::to_string(i));
+    return out;
+}
+
 /// Two charts on a closed mesh cut by a random plane into two discs (nullopt when the plane's
 /// two sides are not both discs: the caller draws again).
 inline std::optional<SeamCase> plane_two_chart_case(const TriMesh& mesh, std::mt19937& rng) {
@@ -212,8 +210,7 @@ inline std::optional<SeamCase> plane_two_chart_case(const TriMesh& mesh, std::mt
     SeamCase out;
     const std::vector<int> seam = seam_on(*a, 3 + int(rng() % 18), rng, out.loop);
     if (out.loop.size() < 12) return std::nullopt;
-    std::vector<std::string> names;
-    for (std::size_t i = 0; i < seam.size(); ++i) names.push_back("seam" + std::to_string(i));
+    const std::vector<std::string> names = seam_names(seam.size());
     out.seam_features = int(seam.size());
     out.charts.push_back(chart_on_disc("front", *a, seam, names, int(rng() % 13), 3.0 * unit(rng), false, rng));
     out.charts.push_back(chart_on_disc("back", *b, seam, names, int(rng() % 13), 3.0 * unit(rng), rng() % 3 == 0, rng));
@@ -266,8 +263,7 @@ inline std::optional<SeamCase> disc_chart_case(const TriMesh& mesh, std::mt19937
     SeamCase out;
     const std::vector<int> seam = seam_on(*a, 3 + int(rng() % 18), rng, out.loop);
     if (out.loop.size() < 12) return std::nullopt;
-    std::vector<std::string> names;
-    for (std::size_t i = 0; i < seam.size(); ++i) names.push_back("seam" + std::to_string(i));
+    const std::vector<std::string> names = seam_names(seam.size());
     out.seam_features = int(seam.size());
     out.charts.push_back(chart_on_disc("face", *a, seam, names, 1 + int(rng() % 12), 3.0 * unit(rng), rng() % 3 == 0, rng));
     return out;
