@@ -205,7 +205,8 @@ TEST(BadInputCharts, OneVertexUnderTwoNames) {
 
 TEST(BadInputCharts, MapRefusesASeamThroughAHandle) {
     // Two charts on the elk (genus 1) bounded by a loop round its middle that a handle passes
-    // through: neither side is a disc. Written by hand (starter-features refuses it too).
+    // through: at most one side is a disc, so one chart's region keeps the handle (either may be
+    // the one named). Written by hand (starter-features refuses it too).
     TempDir dir;
     const TriMesh elk = read_mesh(data("meshes/elk.off"));
     const std::vector<int> seam = bisection_seam_vertices(elk, 8);
@@ -230,7 +231,7 @@ TEST(BadInputCharts, MapRefusesASeamThroughAHandle) {
     EXPECT_EQ(m.code, 2) << m.out;
     EXPECT_NE(m.out.find("elk.json"), std::string::npos) << m.out;
     EXPECT_NE(m.out.find("not a disc"), std::string::npos) << m.out;
-    EXPECT_NE(m.out.find("chart 'front'"), std::string::npos) << m.out;
+    EXPECT_TRUE(m.out.find("chart 'front'") != std::string::npos || m.out.find("chart 'back'") != std::string::npos) << m.out;
     EXPECT_EQ(dir.count(), 1) << m.out;
     expect_validate_agrees(data("meshes/elk.off"), dir / "elk.json", m, dir);
     std::printf("refused: %s", m.out.c_str());

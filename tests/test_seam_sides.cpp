@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ctmap/cut/chart_regions.h"
+#include "ctmap/errors.h"
 #include "ctmap/io/read_mesh.h"
 #include "seam_cases.h"
 #include "test_support.h"
@@ -216,6 +217,39 @@ TEST(Seams, ReRoutedSeamsKeepTheirValidityConditions) {
     }
     std::printf("homer: %d of %d layouts needed seams re-routed\n", rerouted, sets);
     EXPECT_GT(rerouted, 0);
+}
+
+/// The library's seams for many more layouts than the CLI sweeps map (CTest label `long`;
+/// CTMAP_SEAM_SETS=N per mesh, CTMAP_SEAM_MESH=name for one mesh): every layout gets regions whose seams keep the validity
+/// conditions and every feature on its side (expect_valid_seams), the count re-routed printed.
+TEST(SeamsLong, RegionsOfManyLayoutsKeepEveryFeatureOnItsSide) {
+    const int n = count_from_env("CTMAP_SEAM_SETS", 150);
+    struct Case {
+        const char* mesh;
+        bool plane;  // a plane-cut two-chart layout, else a disc chart and the rest
+    };
+    for (const Case& c : {Case{"cow", true}, Case{"homer", true}, Case{"bull", true}, Case{"bunny00", true},
+                          Case{"head", false}, Case{"holes", false}, Case{"elk", false}}) {
+        if (const char* only = std::getenv("CTMAP_SEAM_MESH"); only && std::string(only) != c.mesh) continue;
+        const TriMesh mesh = read_mesh(data(std::string("meshes/") + c.mesh + ".off"));
+        std::mt19937 rng(c.plane ? 40 : 41);
+        int ok = 0, rerouted = 0;
+        for (int s = 0; s < n; ++s) {
+            std::optional<SeamCase> sc;
+            for (int tries = 0; !sc && tries < 500; ++tries) sc = c.plane ? plane_two_chart_case(mesh, rng) : disc_chart_case(mesh, rng);
+            ASSERT_TRUE(sc) << c.mesh;
+            SCOPED_TRACE(std::string(c.mesh) + " set " + std::to_string(s));
+            const std::vector<ChartOutline> outlines = outlines_of(*sc);
+            try {
+                const ChartRegions r = chart_regions(mesh, outlines);
+                expect_valid_seams(mesh, outlines, r);
+                ++ok, rerouted += r.rerouted > 0;
+            } catch (const BadInput& e) {
+                ADD_FAILURE() << e.what();
+            }
+        }
+        std::printf("%s: %d of %d layouts got seams; %d needed seams re-routed\n", c.mesh, ok, n, rerouted);
+    }
 }
 
 /// Must-show 3: a feature of the back chart whose every neighbour on the mesh is a feature of

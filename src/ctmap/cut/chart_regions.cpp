@@ -6,6 +6,7 @@
 #include <set>
 
 #include "ctmap/cut/seam_guide.h"
+#include "ctmap/cut/seam_homology.h"
 #include "ctmap/cut/seam_paths.h"
 #include "ctmap/cut/seam_sides.h"
 #include "ctmap/cut/work_mesh.h"
@@ -66,10 +67,90 @@ std::vector<std::string> cyclic(const std::vector<std::string>& names, const std
     return out;
 }
 
+/// The regions of the seams of `layout`: each chart's side of its loop, checked to be a disc
+/// bounded by the loop that holds exactly the chart's interior features.
+/// \throw BadInput naming the chart when its loop gives it no side, or its side is no such disc.
+ChartRegions regions_of(const TriMesh& mesh, const SeamGraph& graph, const std::vector<ChartOutline>& charts,
+                        const SeamLayout& layout, const std::map<int, std::string>& feature_name) {
+    const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+    ChartRegions out;
+    const ChartSides sides = chart_sides(mesh, graph, charts, layout);
+    if (!sides.error.empty()) throw BadInput("", sides.error);
+    out.seams = layout.pieces;
+    out.rerouted = int(layout.rerouted.size());
+    std::vector<std::vector<int>> loops(charts.size());
+    for (std::size_t c = 0; c < charts.size(); ++c) loops[c] = chart_loop(layout, int(c));
+    std::vector<int> chart_of_component(sides.components, -1);
+    for (std::size_t c = 0; c < charts.size(); ++c) chart_of_component[sides.side[c]] = int(c);
+    out.face_chart.assign(nf, -1);
+    const std::vector<int>& component = sides.component;
+    for (int f = 0; f < nf; ++f) out.face_chart[f] = chart_of_component[component[f]];
+
+    // Each region as a mesh of its own; a disc bounded by its chart's loop, holding exactly the
+    // chart's interior features.
+    for (std::size_t c = 0; c < charts.size(); ++c) {
+        const ChartOutline& ch = charts[c];
+        ChartRegion r;
+        std::vector<int> local(nv, -1);
+        for (int f = 0; f < nf; ++f)
+            if (out.face_chart[f] == int(c))
+                for (int v : mesh.faces[f]) local[v] = 0;
+        for (int v = 0; v < nv; ++v)
+            if (local[v] == 0) local[v] = int(r.global.size()), r.global.push_back(v), r.mesh.positions.push_back(mesh.positions[v]);
+        for (int f = 0; f < nf; ++f)
+            if (out.face_chart[f] == int(c)) {
+                r.faces.push_back(f);
+                r.mesh.faces.push_back({local[mesh.faces[f][0]], local[mesh.faces[f][1]], local[mesh.faces[f][2]]});
+            }
+        const MeshTopology topo = compute_topology(r.mesh);
+        std::set<int> loop_vertices(loops[c].begin(), loops[c].end());
+        const bool bounded = topo.is_disc && topo.border_edges == int(loops[c].size());
+        if (!bounded)
+            throw BadInput("", "chart " + quoted_name(ch.name) + ": its region of the mesh is not a disc bounded by its border (" +
+                                   std::to_string(topo.border_loops) + " border loops, Euler characteristic " +
+                                   std::to_string(topo.euler) +
+                                   "): on a mesh with handles or holes, the border must go round a disc");
+        for (std::size_t i = 0; i < ch.interior.size(); ++i)
+            if (local[ch.interior[i]] < 0 || loop_vertices.count(ch.interior[i]))
+                throw BadInput("", "chart " + quoted_name(ch.name) + ": its feature " + quoted_name(ch.interior_names[i]) +
+                                       " lies outside its region of the mesh: move it, or the border");
+        std::set<int> own(ch.interior.begin(), ch.interior.end());
+        std::vector<std::string> foreign;
+        for (const auto& [v, name] : feature_name)
+            if (local[v] >= 0 && !loop_vertices.count(v) && !own.count(v)) foreign.push_back(name);
+        if (!foreign.empty()) {
+            std::string list;
+            for (const auto& n : foreign) list += (list.empty() ? "" : ", ") + quoted_name(n);
+            throw BadInput("", "chart " + quoted_name(ch.name) + ": its region of the mesh holds features of other charts (" +
+                                   list + "): list them in this chart too, or move the border");
+        }
+        out.charts.push_back(std::move(r));
+    }
+    return out;
+}
+
+/// One attempt: the seams traced (with `weight`, if given), re-routed off the handles and round
+/// misplaced features, and the regions they give. \throw BadInput as `chart_regions`.
+ChartRegions attempt(const TriMesh& mesh, const SeamGraph& graph, const HandleLoops& handles,
+                     const std::vector<ChartOutline>& charts, const std::vector<double>* weight,
+                     const std::map<int, std::string>& feature_name) {
+    SeamLayout layout = trace_seams(mesh, graph, charts, weight);
+    // Off the handles, then round the features; a piece re-routed round a feature may have
+    // taken a handle's short way, so a few rounds.
+    for (int round = 0; round < 4; ++round) {
+        if (keep_seams_off_handles(mesh, graph, handles, charts, layout, weight) == 0 && round > 0) break;
+        keep_features_on_their_sides(mesh, graph, charts, layout);
+    }
+    if (weight)  // every piece through the interior was traced by the guide
+        for (std::size_t k = 0; k < layout.pieces.size(); ++k)
+            if (layout.movable[k]) layout.rerouted.insert(int(k));
+    return regions_of(mesh, graph, charts, layout, feature_name);
+}
+
 }  // namespace
 
 ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>& charts) {
-    const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+    const int nv = mesh.num_vertices();
     for (const ChartOutline& c : charts) {
         if (c.border.size() < 3)
             throw BadInput("", "chart " + quoted_name(c.name) + ": its border needs at least 3 features");
@@ -112,88 +193,33 @@ ChartRegions chart_regions(const TriMesh& mesh, const std::vector<ChartOutline>&
                                        " but on the border of chart " + quoted_name(it->second.second) +
                                        ": a feature on a seam is a border feature of every chart it is in");
     const SeamGraph graph(mesh);
+    const HandleLoops handles = handle_loops(mesh, graph);
     std::map<int, std::string> feature_name;
     for (const ChartOutline& c : charts) {
         for (std::size_t i = 0; i < c.border.size(); ++i) feature_name[c.border[i]] = c.border_names[i];
         for (std::size_t i = 0; i < c.interior.size(); ++i) feature_name[c.interior[i]] = c.interior_names[i];
     }
     // The shortest seams; where they leave a feature outside its chart, pieces are traced again
-    // round it. If that finds no seams, the same from seams drawn to where the charts' regions,
-    // grown from their features, meet; the first attempt's error is the one reported.
-    SeamLayout layout;
-    std::exception_ptr first;
+    // round it. If that gives no seams or no discs, the same from seams drawn to where the charts'
+    // regions, grown from their features, meet; the first attempt's error is the one reported.
     try {
-        layout = trace_seams(mesh, graph, charts, nullptr);
-        keep_features_on_their_sides(mesh, graph, charts, layout);
+        return attempt(mesh, graph, handles, charts, nullptr, feature_name);
     } catch (const BadInput&) {
-        first = std::current_exception();
-    }
-    bool guided = false;
-    for (double strength : {8.0, 64.0}) {
-        if (!first || guided) break;
-        const std::vector<double> weight = seam_guide_weights(mesh, graph, charts, strength);
-        if (weight.empty()) break;
-        try {
-            layout = trace_seams(mesh, graph, charts, &weight);
-            keep_features_on_their_sides(mesh, graph, charts, layout);
-            guided = true;
-        } catch (const BadInput&) {
+        const std::exception_ptr first = std::current_exception();
+        std::vector<std::vector<double>> guides;
+        for (double strength : {8.0, 64.0}) {
+            if (charts.size() == 1) guides.push_back(seam_level_weights(mesh, graph, charts[0], strength));
+            guides.push_back(seam_guide_weights(mesh, graph, charts, strength));
         }
-    }
-    if (first && !guided) std::rethrow_exception(first);
-    if (guided)  // every piece through the interior was traced by the guide
-        for (std::size_t k = 0; k < layout.pieces.size(); ++k)
-            if (layout.movable[k]) layout.rerouted.insert(int(k));
-    ChartRegions out;
-    const ChartSides sides = chart_sides(mesh, graph, charts, layout);
-    if (!sides.error.empty()) throw BadInput("", sides.error);
-    out.seams = layout.pieces;
-    out.rerouted = int(layout.rerouted.size());
-    std::vector<std::vector<int>> loops(charts.size());
-    for (std::size_t c = 0; c < charts.size(); ++c) loops[c] = chart_loop(layout, int(c));
-    std::vector<int> chart_of_component(sides.components, -1);
-    for (std::size_t c = 0; c < charts.size(); ++c) chart_of_component[sides.side[c]] = int(c);
-    out.face_chart.assign(nf, -1);
-    const std::vector<int>& component = sides.component;
-    for (int f = 0; f < nf; ++f) out.face_chart[f] = chart_of_component[component[f]];
-
-    // Each region as a mesh of its own; a disc bounded by its chart's loop, holding exactly the
-    // chart's interior features.
-    for (std::size_t c = 0; c < charts.size(); ++c) {
-        const ChartOutline& ch = charts[c];
-        ChartRegion r;
-        std::vector<int> local(nv, -1);
-        for (int f = 0; f < nf; ++f)
-            if (out.face_chart[f] == int(c))
-                for (int v : mesh.faces[f]) local[v] = 0;
-        for (int v = 0; v < nv; ++v)
-            if (local[v] == 0) local[v] = int(r.global.size()), r.global.push_back(v), r.mesh.positions.push_back(mesh.positions[v]);
-        for (int f = 0; f < nf; ++f)
-            if (out.face_chart[f] == int(c)) {
-                r.faces.push_back(f);
-                r.mesh.faces.push_back({local[mesh.faces[f][0]], local[mesh.faces[f][1]], local[mesh.faces[f][2]]});
+        for (const std::vector<double>& weight : guides) {
+            if (weight.empty()) continue;
+            try {
+                return attempt(mesh, graph, handles, charts, &weight, feature_name);
+            } catch (const BadInput&) {
             }
-        const MeshTopology topo = compute_topology(r.mesh);
-        std::set<int> loop_vertices(loops[c].begin(), loops[c].end());
-        const bool bounded = topo.is_disc && topo.border_edges == int(loops[c].size());
-        if (!bounded)
-            throw BadInput("", "chart " + quoted_name(ch.name) + ": its region of the mesh is not a disc bounded by its border (" +
-                                   std::to_string(topo.border_loops) + " border loops, Euler characteristic " +
-                                   std::to_string(topo.euler) +
-                                   "): on a mesh with handles or holes, the border must go round a disc");
-        std::set<int> own(ch.interior.begin(), ch.interior.end());
-        std::vector<std::string> foreign;
-        for (const auto& [v, name] : feature_name)
-            if (local[v] >= 0 && !loop_vertices.count(v) && !own.count(v)) foreign.push_back(name);
-        if (!foreign.empty()) {
-            std::string list;
-            for (const auto& n : foreign) list += (list.empty() ? "" : ", ") + quoted_name(n);
-            throw BadInput("", "chart " + quoted_name(ch.name) + ": its region of the mesh holds features of other charts (" +
-                                   list + "): list them in this chart too, or move the border");
         }
-        out.charts.push_back(std::move(r));
+        std::rethrow_exception(first);
     }
-    return out;
 }
 
 }  // namespace ctmap

@@ -33,8 +33,10 @@ struct ChartRegions {
 /// the side of its border loop that holds its interior features (without any: the side on the
 /// left of the loop when its image polygon runs counter-clockwise, so the map is not mirrored).
 /// Where a shortest piece passes on the wrong side of an interior feature, the piece is traced
-/// again round it (cut/seam_sides.h), so any layout whose seams can keep every feature on its
-/// chart's side gets such seams.
+/// again round it (cut/seam_sides.h); on a closed mesh with handles, a loop that takes a
+/// handle's short way gets the piece that did traced again in the other class
+/// (cut/seam_homology.h); when that does not give discs, the pieces are traced again drawn to
+/// where the charts' regions, grown from their features, meet (cut/seam_guide.h).
 /// \pre `mesh` is a consistently oriented manifold; every vertex index in range; every chart
 ///      has at least 3 border features.
 /// \throw BadInput naming the charts and features: two charts listing common border features

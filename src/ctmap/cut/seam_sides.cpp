@@ -275,6 +275,21 @@ ChartSides chart_sides(const TriMesh& mesh, const SeamGraph& graph, const std::v
     out.side.assign(nc, -1);
     out.on_left.assign(nc, 0);
     std::vector<int> taken(out.components, -1), other_side(nc, -1);
+    // On a closed mesh with handles, the side a chart's features choose may hold a handle while
+    // the other side is a disc: then the disc is the chart's, and its features are misplaced.
+    const bool closed = std::none_of(graph.on_border.begin(), graph.on_border.end(), [](char b) { return b != 0; });
+    const bool has_handles = closed && mesh.num_vertices() - mesh.num_faces() / 2 < 2;
+    auto is_disc = [&](int piece) {
+        std::set<std::uint64_t> edges;
+        std::set<int> vertices;
+        int faces = 0;
+        for (int f = 0; f < mesh.num_faces(); ++f)
+            if (out.component[f] == piece) {
+                ++faces;
+                for (int k = 0; k < 3; ++k) vertices.insert(mesh.faces[f][k]), edges.insert(edge_key(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3]));
+            }
+        return int(vertices.size()) - int(edges.size()) + faces == 1;
+    };
     // Charts with interior features first: they decide their side; a chart without any then
     // takes the side its image's orientation says, or the other one if that is taken (a mirrored
     // chart of a closed mesh's second half).
@@ -296,7 +311,9 @@ ChartSides chart_sides(const TriMesh& mesh, const SeamGraph& graph, const std::v
         int nl = 0, nr = 0;
         for (int v : ch.interior) nl += component_of(v) == l, nr += component_of(v) == r;
         const int preferred = ch.image_ccw ? l : r;
-        const int first = nl > nr ? l : nr > nl ? r : preferred, second = first == l ? r : l;
+        int first = nl > nr ? l : nr > nl ? r : preferred, second = first == l ? r : l;
+        if (has_handles && first >= 0 && second >= 0 && taken[second] < 0 && !is_disc(first) && is_disc(second))
+            std::swap(first, second);
         int side = -1;
         for (int s : {first, second})
             if (s >= 0 && taken[s] < 0) {
