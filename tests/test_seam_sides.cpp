@@ -8,6 +8,7 @@
 
 #include "ctmap/cut/chart_regions.h"
 #include "ctmap/errors.h"
+#include "ctmap/io/mesh_topology.h"
 #include "ctmap/io/read_mesh.h"
 #include "seam_cases.h"
 #include "test_support.h"
@@ -249,6 +250,23 @@ TEST(SeamsLong, RegionsOfManyLayoutsKeepEveryFeatureOnItsSide) {
             }
         }
         std::printf("%s: %d of %d layouts got seams; %d needed seams re-routed\n", c.mesh, ok, n, rerouted);
+    }
+}
+
+/// On the elk (genus 1) the shortest pieces between unevenly spaced seam features can take a
+/// handle's short way: the first disc layouts all get disc regions with valid seams.
+TEST(Seams, ElkDiscLayoutsGetDiscsDespiteTheHandle) {
+    const TriMesh mesh = read_mesh(data("meshes/elk.off"));
+    std::mt19937 rng(41);
+    for (int s = 0; s < 22; ++s) {
+        std::optional<SeamCase> sc;
+        for (int tries = 0; !sc && tries < 500; ++tries) sc = disc_chart_case(mesh, rng);
+        ASSERT_TRUE(sc);
+        SCOPED_TRACE("elk set " + std::to_string(s));
+        const std::vector<ChartOutline> outlines = outlines_of(*sc);
+        const ChartRegions r = chart_regions(mesh, outlines);  // throws if a region is no disc
+        expect_valid_seams(mesh, outlines, r);
+        EXPECT_EQ(compute_topology(r.charts[0].mesh).euler, 1);
     }
 }
 

@@ -72,6 +72,7 @@ HandleLoops handle_loops(const TriMesh& mesh, const SeamGraph& graph) {
     HandleLoops out;
     const int nv = mesh.num_vertices(), nf = mesh.num_faces();
     if (nv == 0 || std::any_of(graph.on_border.begin(), graph.on_border.end(), [](char b) { return b != 0; })) return out;
+    if (nv - nf / 2 >= 2) return out;  // Euler characteristic 2 (closed: 3F = 2E): a sphere
     // A spanning tree of the vertices, then one of the faces across the other edges; the edges
     // in neither are the handles' (2g of them on a closed mesh).
     std::set<std::uint64_t> tree;
