@@ -27,6 +27,13 @@
 namespace ctmap::cli {
 namespace {
 
+/// The summary's note on re-routed seam pieces, or "".
+std::string rerouted_text(int pieces) {
+    if (pieces == 0) return "";
+    return " (" + std::to_string(pieces) +
+           " traced again round a feature or off a handle, so each chart is a disc holding its features)";
+}
+
 namespace fs = std::filesystem;
 
 /// A checker of `cells` x `cells` squares (the render's colours), for the faces in no chart.
@@ -190,7 +197,7 @@ void print_charts_summary(const MapArgs&, const ChartsRun& run, std::ostream& os
         os << "  the rest: " << r.rest.faces << " faces in no chart, " << r.rest.pieces << " piece(s) cut into discs ("
            << r.rest.cut_edges << " edges cut), mapped automatically with material rest (a checker)\n";
     os << "  " << r.seams.size() << " seam pieces";
-    if (r.seams_rerouted > 0) os << " (" << r.seams_rerouted << " traced round a feature to keep it on its chart's side)";
+    os << rerouted_text(r.seams_rerouted);
     os << ", " << r.textured.mesh.num_vertices() << " vertices, "
        << r.textured.mesh.num_faces() << " faces\n"
        << "  certificate: " << (c.valid ? "valid" : "INVALID") << " (" << c.flipped << " flipped, " << c.degenerate
@@ -234,7 +241,7 @@ int validate_charts(const std::string& mesh_path, const std::string& features_pa
         std::cout << "  the rest: " << r.rest.faces << " faces in no chart, mapped automatically (" << r.rest.pieces
                   << " piece(s))\n";
     std::cout << "  " << r.seams.size() << " seam pieces";
-    if (r.seams_rerouted > 0) std::cout << " (" << r.seams_rerouted << " traced round a feature to keep it on its chart's side)";
+    std::cout << rerouted_text(r.seams_rerouted);
     std::cout << "\n";
     return kExitOk;
 }
