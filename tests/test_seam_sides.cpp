@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ctmap/cut/chart_regions.h"
+#include "ctmap/cut/seam_guide.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/mesh_topology.h"
 #include "ctmap/io/read_mesh.h"
@@ -268,6 +269,23 @@ TEST(Seams, ElkDiscLayoutsGetDiscsDespiteTheHandle) {
         expect_valid_seams(mesh, outlines, r);
         EXPECT_EQ(compute_topology(r.charts[0].mesh).euler, 1);
     }
+}
+
+/// The guide for one chart draws seams to the level of its border features: weight 1 at every
+/// border feature (as far from the interior features as itself), 1 + strength at an interior
+/// feature, and >= 1 everywhere.
+TEST(Seams, LevelGuideIsLowestAtTheBorderFeaturesLevel) {
+    const TriMesh mesh = read_mesh(data("meshes/head.off"));
+    std::mt19937 rng(41);
+    std::optional<SeamCase> sc;
+    while (!sc || sc->charts[0].features.size() == sc->charts[0].border.size()) sc = disc_chart_case(mesh, rng);
+    const ChartOutline chart = outlines_of(*sc)[0];
+    const SeamGraph graph(mesh);
+    const std::vector<double> w = seam_level_weights(mesh, graph, chart, 8.0);
+    ASSERT_EQ(int(w.size()), mesh.num_vertices());
+    for (double x : w) EXPECT_GE(x, 1.0);
+    for (int v : chart.border) EXPECT_NEAR(w[v], 1.0, 1e-12);
+    for (int v : chart.interior) EXPECT_NEAR(w[v], 9.0, 1e-12);
 }
 
 /// Must-show 3: a feature of the back chart whose every neighbour on the mesh is a feature of
