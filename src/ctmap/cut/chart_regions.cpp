@@ -139,7 +139,7 @@ ChartRegions attempt(const TriMesh& mesh, const SeamGraph& graph, const HandleLo
     // taken a handle's short way, so a few rounds.
     for (int round = 0; round < 4; ++round) {
         if (keep_seams_off_handles(mesh, graph, handles, charts, layout, weight) == 0 && round > 0) break;
-        keep_features_on_their_sides(mesh, graph, charts, layout);
+        keep_features_on_their_sides(mesh, graph, charts, layout, &handles);
     }
     if (weight)  // every piece through the interior was traced by the guide
         for (std::size_t k = 0; k < layout.pieces.size(); ++k)

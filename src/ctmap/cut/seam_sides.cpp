@@ -1,5 +1,7 @@
 #include "ctmap/cut/seam_sides.h"
 
+#include "ctmap/cut/seam_homology.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <functional>
@@ -183,7 +185,7 @@ std::vector<int> pieces_between(const TriMesh& mesh, const SeamGraph& graph, con
 /// Traces the pieces `redo` again, each a shortest path round every tether; false (and
 /// `layout` as it was) if one has no route.
 bool retrace(const TriMesh& mesh, const SeamGraph& graph, const std::vector<int>& tether, const std::set<int>& redo,
-             SeamLayout& layout) {
+             SeamLayout& layout, const HandleLoops* handles) {
     const SeamLayout before = layout;
     for (int k : redo) {
         const std::vector<int>& old = layout.pieces[k];
@@ -195,7 +197,11 @@ bool retrace(const TriMesh& mesh, const SeamGraph& graph, const std::vector<int>
         if (tether[v] >= 0) avoid[v] = 1;
     for (int k : redo) {
         const int a = layout.pieces[k].front(), b = layout.pieces[k].back();
-        std::vector<int> fresh = seam_shortest_path(mesh, graph, a, b, avoid, layout.seam_edges);
+        // On a mesh with handles, in the class the piece had (so the loop keeps splitting the mesh).
+        std::vector<int> fresh = handles && handles->count > 0
+                                     ? seam_path_of_parity(mesh, graph, *handles, a, b, handles->parity(before.pieces[k], false),
+                                                           avoid, layout.seam_edges, nullptr)
+                                     : seam_shortest_path(mesh, graph, a, b, avoid, layout.seam_edges);
         if (fresh.empty()) {
             layout = before;
             return false;
@@ -213,7 +219,7 @@ bool retrace(const TriMesh& mesh, const SeamGraph& graph, const std::vector<int>
 /// attempt finds a route (`tethered`: false if not even a tether was found, as for a feature
 /// walled in by other features); `tether` and `layout` are changed only by a move made.
 bool move_across(const TriMesh& mesh, const SeamGraph& graph, const ChartSides& sides, const Misplaced& m, int owner,
-                 std::vector<int>& tether, SeamLayout& layout, int& nearest, bool& tethered) {
+                 std::vector<int>& tether, SeamLayout& layout, int& nearest, bool& tethered, const HandleLoops* handles) {
     const int nv = mesh.num_vertices();
     const std::vector<int> face = some_face(mesh);
     const std::vector<int> piece_of = inner_piece(mesh, layout);
@@ -242,7 +248,7 @@ bool move_across(const TriMesh& mesh, const SeamGraph& graph, const ChartSides& 
             for (int v = 0; v < nv; ++v)
                 if (tether[v] >= 0 && (keep == 0 || (keep == 1 && tether[v] == owner))) with[v] = tether[v];
             for (int v : path) with[v] = owner;
-            if (retrace(mesh, graph, with, redo, layout)) {
+            if (retrace(mesh, graph, with, redo, layout, handles)) {
                 tether = std::move(with);
                 return true;
             }
@@ -347,7 +353,7 @@ ChartSides chart_sides(const TriMesh& mesh, const SeamGraph& graph, const std::v
 }
 
 void keep_features_on_their_sides(const TriMesh& mesh, const SeamGraph& graph, const std::vector<ChartOutline>& charts,
-                                  SeamLayout& layout) {
+                                  SeamLayout& layout, const HandleLoops* handles) {
     int features = 0;
     for (const ChartOutline& ch : charts) features += int(ch.interior.size());
     const int rounds = 8 + 4 * (features + 4);
@@ -365,7 +371,7 @@ void keep_features_on_their_sides(const TriMesh& mesh, const SeamGraph& graph, c
             const int owner = m.chart >= 0 ? m.chart : int(charts.size());  // border loops: the rest's
             int nearest = -1;
             bool tethered = false;
-            moved = move_across(mesh, graph, sides, m, owner, tether, layout, nearest, tethered);
+            moved = move_across(mesh, graph, sides, m, owner, tether, layout, nearest, tethered, handles);
             if (j == 0) first_piece = nearest;
             if (!moved && !tethered && walled < 0) walled = int(j);
         }

@@ -18,6 +18,8 @@
 
 namespace ctmap {
 
+struct HandleLoops;  // cut/seam_homology.h
+
 /// The seams traced so far: pieces between consecutive border features, shared by the charts
 /// that list the same pair.
 struct SeamLayout {
@@ -70,7 +72,9 @@ ChartSides chart_sides(const TriMesh& mesh, const SeamGraph& graph, const std::v
 /// vertices, no two sharing an inner vertex or an edge.
 /// \throw BadInput naming the feature, its chart and the seam segment (the two border features),
 ///        and which way round the seam would have to pass it, when no route keeps it inside.
+/// With `handles` (a closed mesh with handles), each piece traced again keeps its class, so a
+/// loop that splits the mesh keeps splitting it.
 void keep_features_on_their_sides(const TriMesh& mesh, const SeamGraph& graph, const std::vector<ChartOutline>& charts,
-                                  SeamLayout& layout);
+                                  SeamLayout& layout, const HandleLoops* handles = nullptr);
 
 }  // namespace ctmap
