@@ -165,44 +165,25 @@ int keep_seams_off_handles(const TriMesh& mesh, const SeamGraph& graph, const Ha
         for (std::size_t c = 0; c < charts.size() && bad < 0; ++c)
             if ((total = loops.parity(chart_loop(layout, int(c)), true)) != 0) bad = int(c);
         if (bad < 0) return moved;
-        // One piece traced again in the class that closes the loop; if none has a simple such
-        // path, two consecutive pieces, the class split between them every way.
-        const auto& pieces = layout.chart_pieces[bad];
+        // Of the chart's movable pieces, the one whose shortest simple path of the class that
+        // closes the loop is shortest.
         double best = std::numeric_limits<double>::infinity();
-        std::vector<std::pair<int, std::vector<int>>> best_moves;
-        for (int span = 1; span <= 2 && best_moves.empty(); ++span)
-            for (std::size_t i = 0; i < pieces.size(); ++i) {
-                std::vector<int> group;
-                for (int d = 0; d < span; ++d) group.push_back(pieces[(i + d) % pieces.size()].first);
-                if (span == 2 && (pieces.size() < 3 || group[0] == group[1])) continue;
-                if (std::any_of(group.begin(), group.end(), [&](int k) { return !layout.movable[k]; })) continue;
-                SeamLayout trial = layout;
-                for (int k : group) free_piece(trial, k);
-                const int splits = span == 1 ? 1 : 1 << loops.count;
-                for (int split = 0; split < splits; ++split) {
-                    SeamLayout t = trial;
-                    std::vector<std::pair<int, std::vector<int>>> moves;
-                    double sum = 0;
-                    for (int g = 0; g < span; ++g) {
-                        const std::vector<int>& old = layout.pieces[group[g]];
-                        const std::uint32_t change = span == 1 ? total : g == 0 ? std::uint32_t(split) : std::uint32_t(split) ^ total;
-                        std::vector<int> path = seam_path_of_parity(mesh, graph, loops, old.front(), old.back(),
-                                                                    loops.parity(old, false) ^ change, t.blocked, t.seam_edges, weight);
-                        if (path.empty()) break;
-                        sum += length(mesh, path);
-                        place_piece(t, group[g], path);
-                        moves.push_back({group[g], std::move(path)});
-                    }
-                    if (int(moves.size()) == span && sum < best) best = sum, best_moves = std::move(moves);
-                }
-            }
-        if (best_moves.empty()) return -1;
-        for (auto& [k, path] : best_moves) {
-            free_piece(layout, k);
-            place_piece(layout, k, path);
-            layout.rerouted.insert(k);
-            ++moved;
+        int best_piece = -1;
+        std::vector<int> best_path;
+        for (const auto& [k, forward] : layout.chart_pieces[bad]) {
+            if (!layout.movable[k]) continue;
+            SeamLayout trial = layout;
+            free_piece(trial, k);
+            const std::vector<int>& old = layout.pieces[k];
+            std::vector<int> path = seam_path_of_parity(mesh, graph, loops, old.front(), old.back(),
+                                                        loops.parity(old, false) ^ total, trial.blocked, trial.seam_edges, weight);
+            if (!path.empty() && length(mesh, path) < best) best = length(mesh, path), best_piece = k, best_path = std::move(path);
         }
+        if (best_piece < 0) return -1;
+        free_piece(layout, best_piece);
+        place_piece(layout, best_piece, best_path);
+        layout.rerouted.insert(best_piece);
+        ++moved;
     }
     return -1;
 }
