@@ -112,63 +112,47 @@ void map_and_check(const std::string& mesh_path, const SeamCase& sc, Sweep& tall
     tally.rerouted_pieces += rerouted;
 }
 
-/// `per_mesh[i]` plane-cut two-chart layouts on each closed mesh, every one mapped and checked.
-Sweep plane_sweep(const std::vector<std::pair<const char*, int>>& per_mesh) {
-    Sweep all;
-    for (const auto& [name, count] : per_mesh) {
-        const std::string path = data(std::string("meshes/") + name + ".off");
-        const TriMesh mesh = read_mesh(path);
-        std::mt19937 rng(40);
-        Sweep here;
-        for (int s = 0; s < count; ++s) {
-            std::optional<SeamCase> sc;
-            for (int tries = 0; !sc && tries < 500; ++tries) sc = plane_two_chart_case(mesh, rng);
-            if (!sc) {
-                ADD_FAILURE() << name << ": no plane cuts it into two discs";
-                break;
-            }
-            SCOPED_TRACE(std::string(name) + " set " + std::to_string(s) + ", " + std::to_string(sc->seam_features) +
-                         " seam features");
-            map_and_check(path, *sc, here);
-        }
-        std::printf("%s: %d of %d two-chart layouts mapped and checked; %d needed seams re-routed (%d pieces)\n", name,
-                    here.mapped, here.sets, here.rerouted_sets, here.rerouted_pieces);
-        all.sets += here.sets, all.mapped += here.mapped, all.rerouted_sets += here.rerouted_sets;
-        all.rerouted_pieces += here.rerouted_pieces;
-    }
-    std::printf("%d of %d two-chart layouts mapped and checked; %d needed seams re-routed (%d pieces)\n", all.mapped,
-                all.sets, all.rerouted_sets, all.rerouted_pieces);
-    EXPECT_EQ(all.mapped, all.sets);
-    return all;
+/// The two kinds of layout the sweeps draw: plane-cut two-chart layouts on closed meshes, or one
+/// chart on a stretched geodesic disc and the rest in no chart (meshes with border loops or handles).
+enum class Layout { plane_cut, disc_chart };
+
+/// The next layout of `kind` on `mesh`, or nullopt if 500 draws find none.
+std::optional<SeamCase> draw_layout(const TriMesh& mesh, Layout kind, std::mt19937& rng) {
+    std::optional<SeamCase> sc;
+    for (int tries = 0; !sc && tries < 500; ++tries)
+        sc = kind == Layout::plane_cut ? plane_two_chart_case(mesh, rng) : disc_chart_case(mesh, rng);
+    return sc;
 }
 
-/// `per_mesh` one-chart layouts (a stretched geodesic disc, the rest in no chart) on meshes with
-/// several border loops or handles, every one mapped and checked.
-Sweep disc_sweep(const std::vector<std::pair<const char*, int>>& per_mesh) {
+/// Each sweep's own random sequence.
+std::mt19937 layout_rng(Layout kind) { return std::mt19937(kind == Layout::plane_cut ? 40 : 41); }
+
+/// `per_mesh[i]` layouts of `kind` on each mesh, every one mapped and checked.
+Sweep sweep(Layout kind, const std::vector<std::pair<const char*, int>>& per_mesh) {
+    const char* what = kind == Layout::plane_cut ? "two-chart" : "one-chart";
     Sweep all;
     for (const auto& [name, count] : per_mesh) {
         const std::string path = data(std::string("meshes/") + name + ".off");
         const TriMesh mesh = read_mesh(path);
-        std::mt19937 rng(41);
+        std::mt19937 rng = layout_rng(kind);
         Sweep here;
         for (int s = 0; s < count; ++s) {
-            std::optional<SeamCase> sc;
-            for (int tries = 0; !sc && tries < 500; ++tries) sc = disc_chart_case(mesh, rng);
+            const std::optional<SeamCase> sc = draw_layout(mesh, kind, rng);
             if (!sc) {
-                ADD_FAILURE() << name << ": no disc found";
+                ADD_FAILURE() << name << (kind == Layout::plane_cut ? ": no plane cuts it into two discs" : ": no disc found");
                 break;
             }
             SCOPED_TRACE(std::string(name) + " set " + std::to_string(s) + ", " + std::to_string(sc->seam_features) +
                          " seam features");
             map_and_check(path, *sc, here);
         }
-        std::printf("%s: %d of %d one-chart layouts mapped and checked; %d needed seams re-routed (%d pieces)\n", name,
-                    here.mapped, here.sets, here.rerouted_sets, here.rerouted_pieces);
+        std::printf("%s: %d of %d %s layouts mapped and checked; %d needed seams re-routed (%d pieces)\n", name,
+                    here.mapped, here.sets, what, here.rerouted_sets, here.rerouted_pieces);
         all.sets += here.sets, all.mapped += here.mapped, all.rerouted_sets += here.rerouted_sets;
         all.rerouted_pieces += here.rerouted_pieces;
     }
-    std::printf("%d of %d one-chart layouts mapped and checked; %d needed seams re-routed (%d pieces)\n", all.mapped,
-                all.sets, all.rerouted_sets, all.rerouted_pieces);
+    std::printf("%d of %d %s layouts mapped and checked; %d needed seams re-routed (%d pieces)\n", all.mapped,
+                all.sets, what, all.rerouted_sets, all.rerouted_pieces);
     EXPECT_EQ(all.mapped, all.sets);
     return all;
 }
@@ -179,20 +163,20 @@ int count_from_env(const char* var, int fallback) { return std::getenv(var) ? st
 /// mesh for another count).
 TEST(SeamsLong, PlaneCutTwoChartLayoutsAreAllMapped) {
     const int n = count_from_env("CTMAP_SEAM_SETS", 0);
-    plane_sweep({{"cow", n ? n : 80}, {"homer", n ? n : 80}, {"bull", n ? n : 80}, {"bunny00", n ? n : 60}});
+    sweep(Layout::plane_cut, {{"cow", n ? n : 80}, {"homer", n ? n : 80}, {"bull", n ? n : 80}, {"bunny00", n ? n : 60}});
 }
 
 /// Must-show 2: 120 one-chart layouts on meshes with several border loops or a handle.
 TEST(SeamsLong, DiscChartAndTheRestAreAllMapped) {
     const int n = count_from_env("CTMAP_SEAM_SETS", 40);
-    disc_sweep({{"head", n}, {"holes", n}, {"elk", n}});
+    sweep(Layout::disc_chart, {{"head", n}, {"holes", n}, {"elk", n}});
 }
 
 /// The same in the main suite: the first sets of each sweep, and at least one of them needs a
 /// seam re-routed (else this would not test the re-routing).
 TEST(Seams, TheFirstPlaneCutAndDiscLayoutsAreMapped) {
-    const Sweep a = plane_sweep({{"cow", 6}, {"homer", 4}});
-    const Sweep b = disc_sweep({{"head", 3}, {"holes", 3}});
+    const Sweep a = sweep(Layout::plane_cut, {{"cow", 6}, {"homer", 4}});
+    const Sweep b = sweep(Layout::disc_chart, {{"head", 3}, {"holes", 3}});
     EXPECT_GT(a.rerouted_sets + b.rerouted_sets, 0);
 }
 
@@ -234,11 +218,11 @@ TEST(SeamsLong, RegionsOfManyLayoutsKeepEveryFeatureOnItsSide) {
                           Case{"head", false}, Case{"holes", false}, Case{"elk", false}}) {
         if (const char* only = std::getenv("CTMAP_SEAM_MESH"); only && std::string(only) != c.mesh) continue;
         const TriMesh mesh = read_mesh(data(std::string("meshes/") + c.mesh + ".off"));
-        std::mt19937 rng(c.plane ? 40 : 41);
+        const Layout kind = c.plane ? Layout::plane_cut : Layout::disc_chart;
+        std::mt19937 rng = layout_rng(kind);
         int ok = 0, rerouted = 0;
         for (int s = 0; s < n; ++s) {
-            std::optional<SeamCase> sc;
-            for (int tries = 0; !sc && tries < 500; ++tries) sc = c.plane ? plane_two_chart_case(mesh, rng) : disc_chart_case(mesh, rng);
+            const std::optional<SeamCase> sc = draw_layout(mesh, kind, rng);
             ASSERT_TRUE(sc) << c.mesh;
             SCOPED_TRACE(std::string(c.mesh) + " set " + std::to_string(s));
             const std::vector<ChartOutline> outlines = outlines_of(*sc);
@@ -258,10 +242,9 @@ TEST(SeamsLong, RegionsOfManyLayoutsKeepEveryFeatureOnItsSide) {
 /// handle's short way: the first disc layouts all get disc regions with valid seams.
 TEST(Seams, ElkDiscLayoutsGetDiscsDespiteTheHandle) {
     const TriMesh mesh = read_mesh(data("meshes/elk.off"));
-    std::mt19937 rng(41);
+    std::mt19937 rng = layout_rng(Layout::disc_chart);
     for (int s = 0; s < 22; ++s) {
-        std::optional<SeamCase> sc;
-        for (int tries = 0; !sc && tries < 500; ++tries) sc = disc_chart_case(mesh, rng);
+        const std::optional<SeamCase> sc = draw_layout(mesh, Layout::disc_chart, rng);
         ASSERT_TRUE(sc);
         SCOPED_TRACE("elk set " + std::to_string(s));
         const std::vector<ChartOutline> outlines = outlines_of(*sc);
