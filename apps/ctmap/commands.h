@@ -32,6 +32,7 @@ struct Command {
 };
 
 Command add_render_command(CLI::App& app);  // cmd_render.cpp
+Command add_bake_command(CLI::App& app);    // cmd_bake.cpp
 
 /// What `ctmap map` is asked to do (also used by `ctmap demo`).
 struct MapArgs {

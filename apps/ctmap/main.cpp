@@ -261,6 +261,7 @@ int run(int argc, char** argv) {
     const std::vector<cli::Command> commands = {
         cli::add_map_command(app),
         cli::add_render_command(app),
+        cli::add_bake_command(app),
         cli::add_starter_command(app),
         cli::add_morph_command(app),
         cli::add_serve_command(app),

@@ -111,8 +111,10 @@ RestMap map_rest(const TriMesh& mesh, const std::vector<int>& face_chart, int re
         }
         const int uv_offset = int(out.uvs.size());
         out.uvs.insert(out.uvs.end(), uv.begin(), uv.end());
-        for (const Tri& t : cut.disc.faces) {
+        for (std::size_t f = 0; f < cut.disc.faces.size(); ++f) {  // the piece's faces, in its order (cut_to_disc.h)
+            const Tri& t = cut.disc.faces[f];
             out.mesh.faces.push_back({global[cut.original[t[0]]], global[cut.original[t[1]]], global[cut.original[t[2]]]});
+            out.input_face.push_back(pieces[p][f]);
             out.uv_faces.push_back({t[0] + uv_offset, t[1] + uv_offset, t[2] + uv_offset});
             out.chart.push_back(rest_chart);
             out.patch.push_back(patch_base + int(p));  // a patch (OBJ group) per piece
@@ -290,6 +292,7 @@ ChartsResult map_charts(const TriMesh& input, const std::vector<ChartInput>& cha
             out.textured.uv_faces.push_back({t[0] + uv_offset, t[1] + uv_offset, t[2] + uv_offset});
             out.textured.chart.push_back(int(c));
             out.textured.patch.push_back(patch_offset + r.cut.face_patch[f]);
+            out.textured.input_face.push_back(region.faces[r.input_face[f]]);  // the region's face, then the mesh's
             patches = std::max(patches, r.cut.face_patch[f] + 1);
         }
         patch_offset += patches;

@@ -1,4 +1,5 @@
 #include "ctmap/map_texture.h"
+#include "ctmap/input_faces.h"
 
 #include "ctmap/io/mesh_topology.h"
 
@@ -428,6 +429,7 @@ MapResult map_texture(const TriMesh& input, const std::vector<MapFeature>& featu
     // The optimiser's scale, for the mesh as returned: a run continued on r.cut.mesh with it
     // minimises the same energy (IsometricOptions::scale).
     r.isometric_stats.scale /= box.half;
+    r.input_face = input_faces_of(input, r.cut.mesh);
     r.timings_ms.total = ms_since(start);
     if (!r.certificate.valid)
         throw InternalError("the map failed its certificate (" + std::to_string(r.certificate.flipped) + " flipped, " +

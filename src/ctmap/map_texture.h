@@ -90,6 +90,8 @@ struct MapResult {
     Distortion after_relax;           ///< distortion after the paper's relaxation (before the optimiser)
     Certificate certificate;          ///< of the written map (valid, or map_texture throws)
     MapTimings timings_ms;
+    /// Per face of cut.mesh, the face of the input mesh it lies in (input_faces.h).
+    std::vector<int> input_face;
     int point_features = 0;           ///< features given as 3D points (inserted as vertices)
     double point_features_moved = 0;  ///< the largest distance a point feature moved onto the mesh
 
@@ -105,6 +107,7 @@ struct MapResult {
     TexturedMesh textured() const {
         TexturedMesh t = TexturedMesh::with_vertex_uvs(cut.mesh, uv);
         t.patch = cut.face_patch;
+        t.input_face = input_face;
         return t;
     }
 };

@@ -35,6 +35,10 @@ struct TexturedMesh {
     /// `g patch_<id>` groups so that `ctmap render --mode paths` can draw the cut from the file.
     /// Empty when unknown.
     std::vector<int> patch;
+    /// Optional: per face, the face of the input mesh it lies in (input_faces.h), written to OBJ
+    /// as `#ctmap_input_face` comment lines, so that `ctmap bake` can carry the map onto the
+    /// input exactly. Empty when unknown.
+    std::vector<int> input_face;
 
     /// A textured mesh whose UVs are per vertex (one chart): uv_faces = faces.
     static TexturedMesh with_vertex_uvs(TriMesh m, std::vector<Vec2> vertex_uvs) {

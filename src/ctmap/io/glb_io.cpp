@@ -381,7 +381,7 @@ bool has_glb_extension(const std::string& path) {
 
 }  // namespace
 
-TexturedMesh read_glb(const std::string& path, GlbTexture* texture) {
+TexturedMesh read_glb(const std::string& path, GlbTexture* texture, const std::string& uv_attribute) {
     check_input_file(path, "glTF file");
     tinygltf::Model m;
     tinygltf::TinyGLTF gltf;
@@ -446,10 +446,10 @@ TexturedMesh read_glb(const std::string& path, GlbTexture* texture) {
                     throw BadInput(path, "vertex " + std::to_string(i / 3) + " has a non-finite coordinate (NaN or infinity)");
                 tm.mesh.positions.emplace_back(pos[i], pos[i + 1], pos[i + 2]);
             }
-            if (p.attributes.count("TEXCOORD_0")) {
-                const auto uv = read_accessor<float>(m, p.attributes.at("TEXCOORD_0"), TINYGLTF_COMPONENT_TYPE_FLOAT,
+            if (p.attributes.count(uv_attribute)) {
+                const auto uv = read_accessor<float>(m, p.attributes.at(uv_attribute), TINYGLTF_COMPONENT_TYPE_FLOAT,
                                                      TINYGLTF_TYPE_VEC2, path);
-                if (uv.size() / 2 != pos.size() / 3) throw BadInput(path, "TEXCOORD_0 and POSITION have different counts");
+                if (uv.size() / 2 != pos.size() / 3) throw BadInput(path, uv_attribute + " and POSITION have different counts");
                 for (std::size_t i = 0; i < uv.size(); i += 2) tm.uvs.emplace_back(uv[i], 1.0 - double(uv[i + 1]));
                 any_uv = true;
             } else {

@@ -50,6 +50,9 @@ struct GlbTexture {
 /// embedded in the file's buffer (and is cleared otherwise).
 /// \throw BadInput naming the file if it cannot be loaded, has no indexed triangle primitive, or
 ///        an accessor or index points outside its buffer.
-TexturedMesh read_glb(const std::string& path, GlbTexture* texture = nullptr);
+/// `uv_attribute` names the UV set read (another than TEXCOORD_0: `ctmap bake --onto-uv`); a
+/// primitive without it reads as one without UVs.
+TexturedMesh read_glb(const std::string& path, GlbTexture* texture = nullptr,
+                      const std::string& uv_attribute = "TEXCOORD_0");
 
 }  // namespace ctmap

@@ -7,12 +7,19 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "ctmap/errors.h"
 #include "ctmap/io/input_file.h"
 #include "ctmap/io/vertex_normals.h"
 
 namespace ctmap {
+namespace {
+/// The comment lines that record, per face, the input face it lies in (TexturedMesh::input_face).
+constexpr std::string_view kInputFaceTag = "#ctmap_input_face ";
+constexpr std::size_t kInputFacesPerLine = 20;
+}  // namespace
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -57,6 +64,15 @@ void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::s
     write_obj(tm, obj_path, one, outputs);
 }
 
+std::string mtl_text(const std::vector<ChartMaterial>& materials, const std::string& obj_path) {
+    std::string s = "# written by ctmap\n";
+    for (std::size_t c = 0; c < materials.size(); ++c) {
+        s += (c ? "\n" : "") + std::string("newmtl ") + materials[c].name + "\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nillum 1\n";
+        if (!materials[c].image.empty()) s += "map_Kd " + relative_to(materials[c].image, obj_path) + "\n";
+    }
+    return s;
+}
+
 void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::vector<ChartMaterial>& materials,
                OutputSet& outputs) {
     for (int c : tm.chart)
@@ -98,6 +114,15 @@ void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::v
         }
         s += '\n';
     }
+    if (tm.input_face.size() == tm.mesh.faces.size()) {
+        s += "# per face above, in order: the face of the input mesh it lies in (read by ctmap bake)\n";
+        for (std::size_t f = 0; f < tm.input_face.size(); f += kInputFacesPerLine) {
+            s += kInputFaceTag;
+            for (std::size_t g = f; g < std::min(tm.input_face.size(), f + kInputFacesPerLine); ++g)
+                s += (g == f ? "" : " ") + std::to_string(tm.input_face[g]);
+            s += '\n';
+        }
+    }
     {
         std::ofstream os(obj_tmp, std::ios::binary);
         os << s;
@@ -105,11 +130,7 @@ void write_obj(const TexturedMesh& tm, const std::string& obj_path, const std::v
     }
     {
         std::ofstream os(mtl_tmp, std::ios::binary);
-        os << "# written by ctmap\n";
-        for (std::size_t c = 0; c < materials.size(); ++c) {
-            os << (c ? "\n" : "") << "newmtl " << materials[c].name << "\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nillum 1\n";
-            if (!materials[c].image.empty()) os << "map_Kd " << relative_to(materials[c].image, obj_path) << "\n";
-        }
+        os << mtl_text(materials, obj_path);
         check_or_throw(os, mtl_path);
     }
 }
@@ -173,6 +194,19 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image, std:
         const char* p = line.data();
         const char* end = p + line.size();
         while (p < end && (*p == ' ' || *p == '\t')) ++p;
+        if (std::size_t(end - p) > kInputFaceTag.size() && std::string_view(p, kInputFaceTag.size()) == kInputFaceTag) {
+            p += kInputFaceTag.size();
+            while (true) {
+                while (p < end && (*p == ' ' || *p == '\t')) ++p;
+                if (p == end) break;
+                int f = -1;
+                auto [q, ecode] = std::from_chars(p, end, f);
+                if (ecode != std::errc() || f < 0) r.fail("malformed `" + std::string(kInputFaceTag) + "` line");
+                tm.input_face.push_back(f);
+                p = q;
+            }
+            continue;
+        }
         if (p == end || *p == '#') continue;
         if (line.find('\0') != std::string::npos) r.fail("binary data in a text OBJ file");
         auto starts = [&](const char* kw) {
@@ -261,6 +295,7 @@ TexturedMesh read_textured_obj(const std::string& path, std::string* image, std:
         tm.uvs.clear();
     }
     if (!all_faces_grouped) tm.patch.clear();
+    if (tm.input_face.size() != tm.mesh.faces.size()) tm.input_face.clear();  // not one per face: not ctmap's record
     if (used_materials.empty()) used_materials.push_back("");
     if (materials) {
         materials->clear();

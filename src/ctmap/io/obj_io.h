@@ -26,6 +26,9 @@ void write_obj(const TexturedMesh& mesh, const std::string& obj_path, const std:
 
 /// Same, committed at once.
 void write_obj(const TexturedMesh& mesh, const std::string& obj_path, const std::string& image = "");
+/// The MTL file `write_obj` writes beside `obj_path` for `materials`: each with its `map_Kd`
+/// image, named relative to the OBJ's folder.
+std::string mtl_text(const std::vector<ChartMaterial>& materials, const std::string& obj_path);
 
 /// Reads an OBJ with optional texture coordinates (`v`, `vt`, `f v`, `f v/vt`, `f v/vt/vn`,
 /// `f v//vn`, negative indices). Polygons are split into fans. CGAL's readers drop `vt`, so this

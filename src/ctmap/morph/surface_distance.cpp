@@ -1,44 +1,10 @@
 #include "ctmap/morph/surface_distance.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
 #include <algorithm>
 #include <cmath>
 #include <set>
 
-#include "ctmap/errors.h"
-
 namespace ctmap {
-namespace {
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Triangles = std::vector<K::Triangle_3>;
-using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
-using Traits = CGAL::AABB_traits<K, Primitive>;
-K::Point_3 point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
-}  // namespace
-
-struct SurfaceDistance::Tree {
-    Triangles triangles;
-    CGAL::AABB_tree<Traits> tree;
-};
-
-SurfaceDistance::SurfaceDistance(const TriMesh& mesh) : tree_(std::make_unique<Tree>()) {
-    for (const Tri& t : mesh.faces) {
-        const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
-        if ((b - a).cross(c - a).norm() > 0) tree_->triangles.emplace_back(point(a), point(b), point(c));
-    }
-    if (tree_->triangles.empty()) throw BadInput("", "the surface has no face of nonzero area");
-    tree_->tree.insert(tree_->triangles.begin(), tree_->triangles.end());
-    tree_->tree.build();
-    tree_->tree.accelerate_distance_queries();
-}
-
-SurfaceDistance::~SurfaceDistance() = default;
-
-double SurfaceDistance::distance(const Vec3& p) const { return std::sqrt(tree_->tree.squared_distance(point(p))); }
 
 double hausdorff_from(const TriMesh& from, const TriMesh& to, int samples_per_face) {
     const SurfaceDistance d(to);

@@ -6,22 +6,13 @@
 #include <vector>
 
 #include "ctmap/mesh.h"
+#include "ctmap/surface_locator.h"
 
 namespace ctmap {
 
 /// Distances to the surface of one mesh.
-class SurfaceDistance {
-public:
-    /// \pre `mesh` has at least one face of nonzero area (zero-area faces are left out).
-    explicit SurfaceDistance(const TriMesh& mesh);
-    ~SurfaceDistance();
-    /// The distance from `p` to the nearest point of the surface.
-    double distance(const Vec3& p) const;
-
-private:
-    struct Tree;
-    std::unique_ptr<Tree> tree_;
-};
+/// (SurfaceLocator, whose distance queries these are.)
+using SurfaceDistance = SurfaceLocator;
 
 /// The one-sided Hausdorff distance from `from` to `to`, sampled at `from`'s vertices, edge
 /// midpoints and face centroids and at `samples_per_face` more points per face (a fixed pattern).
