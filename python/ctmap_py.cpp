@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "ctmap/bake/bake_texture.h"
 #include "ctmap/certify/certificate.h"
 #include "ctmap/errors.h"
 #include "ctmap/io/glb_io.h"
@@ -166,6 +167,7 @@ py::dict map_texture_py(const Doubles& V, const Ints& F, const py::list& feature
     out["UV_corners"] = corners;
     out["chart"] = py::array_t<int>(py::ssize_t(tm.chart.size()), tm.chart.data());
     out["feature_vertex"] = r.cut.feature_vertex;
+    out["input_face"] = py::array_t<int>(py::ssize_t(r.input_face.size()), r.input_face.data());
     out["certificate"] = to_python(certificate_to_json(r.certificate));
     return out;
 }
@@ -188,6 +190,94 @@ py::dict certify_py(const Doubles& V, const Ints& F, const Doubles& UV, std::vec
         c = certify(tm, feature_vertex, fuv);
     }
     return to_python(certificate_to_json(c));
+}
+
+/// ONTO's UVs: n x 2 (one per vertex) or m x 3 x 2 (per face corner). \throw BadInput.
+void set_uvs_from(TexturedMesh& t, const Doubles& UV, const char* name) {
+    const py::ssize_t n = py::ssize_t(t.mesh.positions.size()), m = py::ssize_t(t.mesh.faces.size());
+    if (UV.ndim() == 2 && UV.shape(0) == n && UV.shape(1) == 2) {
+        const auto u = UV.unchecked<2>();
+        for (py::ssize_t i = 0; i < n; ++i) t.uvs.emplace_back(u(i, 0), u(i, 1));
+        t.uv_faces = t.mesh.faces;
+    } else if (UV.ndim() == 3 && UV.shape(0) == m && UV.shape(1) == 3 && UV.shape(2) == 2) {
+        const auto u = UV.unchecked<3>();
+        for (py::ssize_t f = 0; f < m; ++f) {
+            Tri tri;
+            for (int k = 0; k < 3; ++k) tri[k] = int(t.uvs.size()), t.uvs.emplace_back(u(f, k, 0), u(f, k, 1));
+            t.uv_faces.push_back(tri);
+        }
+    } else {
+        throw BadInput(name, "must be n x 2 (one UV per vertex) or m x 3 x 2 (per face corner)");
+    }
+    for (const Vec2& q : t.uvs)
+        if (!q.allFinite()) throw BadInput(name, "has a non-finite UV");
+    t.chart.assign(t.mesh.faces.size(), 0);
+}
+
+/// An H x W x 3 or 4 uint8 array as an RGBA Image. \throw BadInput.
+Image image_from(const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a) {
+    if (a.ndim() != 3 || (a.shape(2) != 3 && a.shape(2) != 4) || a.shape(0) < 1 || a.shape(1) < 1)
+        throw BadInput("photo", "must be an H x W x 3 (RGB) or H x W x 4 (RGBA) uint8 array");
+    Image im;
+    im.height = int(a.shape(0)), im.width = int(a.shape(1)), im.channels = 4;
+    im.pixels.resize(std::size_t(im.width) * std::size_t(im.height) * 4, 255);
+    const auto v = a.unchecked<3>();
+    for (py::ssize_t y = 0; y < a.shape(0); ++y)
+        for (py::ssize_t x = 0; x < a.shape(1); ++x)
+            for (py::ssize_t k = 0; k < a.shape(2); ++k) im.pixels[(std::size_t(y) * std::size_t(im.width) + std::size_t(x)) * 4 + std::size_t(k)] = v(y, x, k);
+    return im;
+}
+
+py::dict bake_py(const py::dict& map, const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& photo,
+                 const Doubles& V, const Ints& F, const Doubles& UV, std::optional<std::pair<int, int>> size, int padding,
+                 double max_distance, const std::string& transfer) {
+    for (const char* k : {"V", "F", "UV"})
+        if (!map.contains(k)) throw BadInput("map", std::string("has no \"") + k + "\" (give the dict map_texture returned)");
+    TexturedMesh m;
+    m.mesh = mesh_from(map["V"].cast<Doubles>(), map["F"].cast<Ints>());
+    set_uvs_from(m, map.contains("UV_corners") ? map["UV_corners"].cast<Doubles>() : map["UV"].cast<Doubles>(), "map[\"UV\"]");
+    if (map.contains("input_face")) {
+        const auto f = map["input_face"].cast<std::vector<int>>();
+        if (f.size() == m.mesh.faces.size()) m.input_face = f;
+    }
+    if (map.contains("chart")) {
+        const auto ch = map["chart"].cast<std::vector<int>>();
+        if (ch.size() == m.mesh.faces.size()) m.chart = ch;
+    }
+    TexturedMesh onto;
+    onto.mesh = mesh_from(V, F);
+    set_uvs_from(onto, UV, "UV");
+    if (transfer != "auto" && transfer != "exact" && transfer != "closest")
+        throw BadInput("transfer", "must be \"auto\", \"exact\" or \"closest\"");
+    if (padding < 0) throw BadInput("padding", "must be >= 0");
+    BakeOptions o;
+    if (size) {
+        if (size->first < 1 || size->second < 1 || size->first > 16384 || size->second > 16384)
+            throw BadInput("size", "each side must be 1 to 16384 texels");
+        o.width = size->first, o.height = size->second;
+    }
+    o.padding = padding, o.max_distance = max_distance;
+    o.transfer = transfer == "exact" ? BakeTransfer::exact : transfer == "closest" ? BakeTransfer::closest : BakeTransfer::automatic;
+    const Image im = image_from(photo);
+    BakeResult r;
+    {
+        py::gil_scoped_release release;
+        r = bake_texture(m, {im}, onto, o);
+    }
+    py::array_t<std::uint8_t> tex({py::ssize_t(r.texture.height), py::ssize_t(r.texture.width), py::ssize_t(4)});
+    std::copy(r.texture.pixels.begin(), r.texture.pixels.end(), tex.mutable_data());
+    py::array_t<bool> covered({py::ssize_t(r.texture.height), py::ssize_t(r.texture.width)});
+    std::transform(r.covered.begin(), r.covered.end(), covered.mutable_data(), [](std::uint8_t b) { return b != 0; });
+    py::dict out;
+    out["texture"] = tex;
+    out["covered"] = covered;
+    out["exact"] = r.stats.exact;
+    out["not_exact"] = r.stats.not_exact;
+    out["covered_texels"] = r.stats.covered;
+    out["written_twice"] = r.stats.written_twice;
+    out["too_far"] = r.stats.too_far;
+    out["padded"] = r.stats.padded;
+    return out;
 }
 
 }  // namespace
@@ -222,6 +312,15 @@ The GIL is released while the map is computed.)");
     m.def("certify", &certify_py, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("feature_vertex") = std::vector<int>{},
           py::arg("feature_uv") = py::none(),
           "The validity certificate of a map with one UV per vertex (exact predicates), as a dict.");
+    m.def("bake", &bake_py, py::arg("map"), py::arg("photo"), py::arg("V"), py::arg("F"), py::arg("UV"),
+          py::arg("size") = py::none(), py::arg("padding") = 8, py::arg("max_distance") = -1.0, py::arg("transfer") = "auto",
+          R"(Bakes `photo` (H x W x 3 or 4 uint8), mapped by `map` (the dict map_texture returns), into the UV
+layout UV of the mesh (V, F): UV n x 2 (per vertex) or m x 3 x 2 (per face corner), OBJ's convention, v up
+(`ctmap bake`). Exact when (V, F) is the mesh the map was computed from, else by the closest point of the map
+(texels farther than max_distance, default 1% of the bounding box, left empty). size=(width, height), default
+the photo's. Returns a dict: texture (height x width x 4 uint8, rows top to bottom, alpha 0 where nothing was
+written), covered (height x width bool), exact, not_exact, covered_texels, written_twice, too_far, padded.
+Raises ValueError for bad input. The GIL is released while baking.)");
     m.def("write_obj", [](const std::string& path, const Doubles& V, const Ints& F, const Doubles& UV, const std::string& image) {
         write_obj(textured_from(V, F, UV), path, image);
     }, py::arg("path"), py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("image") = "",

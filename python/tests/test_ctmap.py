@@ -159,3 +159,62 @@ def test_the_gil_is_released_while_mapping():
     # With the GIL held by a map, this loop would stall for the whole map (seconds); released,
     # it ticks about once a millisecond.
     assert elapsed > 0.5 and ticks[0] > 0.2 * elapsed * 1000, (elapsed, ticks[0])
+
+
+def read_png_rgba(path):
+    """A PNG (8-bit RGB or RGBA, non-interlaced) as an H x W x 4 uint8 array, with zlib alone."""
+    import zlib
+    data = open(path, "rb").read()
+    pos, idat, width = 8, b"", 0
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+            assert depth == 8 and colour in (2, 6)
+            channels = 4 if colour == 6 else 3
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw = np.frombuffer(zlib.decompress(idat), np.uint8).reshape(height, 1 + width * channels)
+    out = np.zeros((height, width * channels), np.int32)
+    prev = np.zeros(width * channels, np.int32)
+    for y in range(height):
+        kind, line = raw[y, 0], raw[y, 1:].astype(np.int32)
+        row = np.zeros_like(line)
+        for x in range(len(line)):
+            a = row[x - channels] if x >= channels else 0
+            b, c = prev[x], (prev[x - channels] if x >= channels else 0)
+            p = a + b - c
+            pred = [0, a, b, (a + b) // 2,
+                    a if abs(p - a) <= abs(p - b) and abs(p - a) <= abs(p - c) else (b if abs(p - b) <= abs(p - c) else c)][kind]
+            row[x] = (line[x] + pred) & 255
+        out[y], prev = row, row
+    img = out.reshape(height, width, channels).astype(np.uint8)
+    if channels == 3:
+        img = np.concatenate([img, np.full((height, width, 1), 255, np.uint8)], axis=2)
+    return img
+
+
+def test_bake_onto_the_mesh_itself_is_exact_and_matches_the_cli(tmp_path):
+    # Issue 42: bake() on arrays gives the texture `ctmap bake` writes for the same map and layout.
+    V, F = ctmap.read_mesh(MESH)
+    r = ctmap.map_texture(V, F, FEATURES, image_size=SIZE)
+    assert len(r["input_face"]) == len(r["F"])
+    lo, hi = V.min(axis=0), V.max(axis=0)
+    UV = 0.05 + 0.9 * (V[:, :2] - lo[:2]) / (hi[:2] - lo[:2])
+    photo = read_png_rgba(data("images/astronaut.png"))
+    b = ctmap.bake(r, photo, V, F, UV, size=(256, 256))
+    assert b["exact"] and b["texture"].shape == (256, 256, 4) and b["covered"].sum() == b["covered_texels"] > 10000
+    assert (b["texture"][b["covered"]][:, 3] == 255).all()
+    ctmap.write_obj(str(tmp_path / "map.obj"), r["V"], r["F"], r["UV"], data("images/astronaut.png"))
+    ctmap.write_obj(str(tmp_path / "onto.obj"), V, F, UV)
+    subprocess.run([os.environ["CTMAP_BIN"], "bake", str(tmp_path / "map.obj"), str(tmp_path / "onto.obj"), "-o",
+                    str(tmp_path / "baked.png"), "--size", "256", "-q"], check=True)
+    cli = read_png_rgba(tmp_path / "baked.png")
+    # The OBJ from write_obj has no input_face record: the CLI finds it again (same faces, same texture).
+    assert np.array_equal(cli, b["texture"])
+    with pytest.raises(ValueError, match="photo"):
+        ctmap.bake(r, np.zeros((4, 4), np.uint8), V, F, UV)
+    with pytest.raises(ValueError, match="UV"):
+        ctmap.bake(r, photo, V, F, UV[:10])
