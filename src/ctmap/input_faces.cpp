@@ -2,16 +2,28 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <limits>
+
 #include "ctmap/surface_locator.h"
 
 namespace ctmap {
 
 std::vector<int> input_faces_of(const TriMesh& input, const TriMesh& refined) {
-    const SurfaceLocator locator(input);
+    // In the input's bounding box scaled to unit size: a mesh in tiny or huge units keeps its
+    // faces' areas away from underflow and overflow (the map does not depend on the unit).
+    Vec3 lo = input.positions.empty() ? Vec3::Zero() : input.positions[0], hi = lo;
+    for (const Vec3& p : input.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    const Vec3 centre = 0.5 * (lo + hi);
+    const double size = std::max((hi - lo).maxCoeff(), std::numeric_limits<double>::min());
+    auto unit = [&](const Vec3& p) { return Vec3((p - centre) / size); };
+    TriMesh scaled = input;
+    for (Vec3& p : scaled.positions) p = unit(p);
+    const SurfaceLocator locator(scaled);
     std::vector<int> out(refined.faces.size(), -1);
     tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t f) {
         const Tri& t = refined.faces[f];
-        const Vec3 c = (refined.positions[t[0]] + refined.positions[t[1]] + refined.positions[t[2]]) / 3.0;
+        const Vec3 c = (unit(refined.positions[t[0]]) + unit(refined.positions[t[1]]) + unit(refined.positions[t[2]])) / 3.0;
         out[f] = locator.closest(c).face;
     });
     return out;
