@@ -164,3 +164,68 @@ TEST(BakeCli, TwoChartsBakeOntoOneLayoutWithNoSeamInTheRender) {
 
 }  // namespace
 }  // namespace ctmap::test
+
+namespace ctmap::test {
+namespace {
+
+TEST(BakeCli, GlbMapUdimTilesAndMaskAreWritten) {
+    // A GLB map (the photo embedded, positions as 32-bit floats) bakes exactly like its OBJ twin;
+    // a layout over two UDIM tiles gives one texture and one mask per tile, each tile holding its
+    // own triangles only.
+    TempDir dir;
+    const std::string mesh = data("meshes/nefertiti.off");
+    must_run("map " + q(mesh) + " " + q(data("features/nefertiti_astronaut.json")) + " --image " +
+             q(data("images/astronaut.png")) + " -o " + q(dir / "map.obj") + " --glb " + q(dir / "map.glb") + " -q");
+    const TriMesh m = read_mesh(mesh);
+    Vec3 lo = m.positions[0], hi = lo;
+    for (const Vec3& p : m.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    std::vector<Vec2> uv;
+    for (const Vec3& p : m.positions)
+        uv.emplace_back(0.05 + 0.9 * (p.x() - lo.x()) / (hi.x() - lo.x()), 0.05 + 0.9 * (p.y() - lo.y()) / (hi.y() - lo.y()));
+    write_onto(dir / "onto.obj", m, uv, m.faces);
+    must_run("bake " + q(dir / "map.obj") + " " + q(dir / "onto.obj") + " -o " + q(dir / "obj.png") + " --mask " +
+             q(dir / "obj_mask.png") + " --padding 0 -q");
+    const RunResult glb = must_run("bake " + q(dir / "map.glb") + " " + q(dir / "onto.obj") + " -o " + q(dir / "glb.png") + " --padding 0");
+    EXPECT_NE(glb.out.find("exact"), std::string::npos) << glb.out;
+    const Image a = read_image(dir / "obj.png"), b = read_image(dir / "glb.png"), mask = read_image(dir / "obj_mask.png");
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    int worst = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) worst = std::max(worst, std::abs(int(a.pixels[i]) - int(b.pixels[i])));
+    EXPECT_LE(worst, 1) << "the GLB's float positions move a texel's point by far less than a pixel";
+
+    // Two tiles: the faces whose centroid is right of the middle go to tile 1002 (u + 1).
+    std::vector<Vec2> uvs;
+    std::vector<Tri> uv_faces;
+    int right = 0;
+    for (const Tri& t : m.faces) {
+        const double cu = (uv[std::size_t(t[0])].x() + uv[std::size_t(t[1])].x() + uv[std::size_t(t[2])].x()) / 3;
+        const double shift = cu > 0.5 ? 1 : 0;
+        right += cu > 0.5;
+        Tri ft;
+        for (int k = 0; k < 3; ++k) ft[std::size_t(k)] = int(uvs.size()), uvs.push_back(uv[std::size_t(t[std::size_t(k)])] + Vec2(shift, 0));
+        uv_faces.push_back(ft);
+    }
+    ASSERT_GT(right, 0);
+    write_onto(dir / "udim.obj", m, uvs, uv_faces);
+    const RunResult u = must_run("bake " + q(dir / "map.obj") + " " + q(dir / "udim.obj") + " -o " + q(dir / "tile.png") +
+                                 " --mask " + q(dir / "mask.png") + " --padding 0");
+    EXPECT_NE(u.out.find("2 UDIM tiles"), std::string::npos) << u.out;
+    EXPECT_FALSE(std::filesystem::exists(dir / "tile.png"));
+    const Image t1 = read_image(dir / "tile.1001.png"), t2 = read_image(dir / "tile.1002.png");
+    const Image m1 = read_image(dir / "mask.1001.png"), m2 = read_image(dir / "mask.1002.png");
+    // Together the tiles cover what the one-tile bake covers, texel for texel, with its colours.
+    long long both = 0, differ = 0, coverage_differs = 0;
+    for (std::size_t i = 0; i < std::size_t(a.width) * std::size_t(a.height); ++i) {
+        const bool in1 = m1.pixels[4 * i] == 255, in2 = m2.pixels[4 * i] == 255, in = mask.pixels[4 * i] == 255;
+        both += in1 && in2;
+        coverage_differs += (in1 || in2) != in;
+        const Image& t = in1 ? t1 : t2;
+        if ((in1 || in2) && std::abs(int(t.pixels[4 * i]) - int(a.pixels[4 * i])) > 1) ++differ;
+    }
+    EXPECT_EQ(coverage_differs, 0);
+    EXPECT_EQ(differ, 0);
+    std::cout << "UDIM: 2 tiles, " << both << " texels covered in both (a triangle's border on the tiles' shared u)\n";
+}
+
+}  // namespace
+}  // namespace ctmap::test
