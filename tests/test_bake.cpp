@@ -16,6 +16,7 @@
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/map_texture.h"
 #include "ctmap/subdivide.h"
+#include "bake_cases.h"
 #include "test_support.h"
 
 namespace ctmap::test {
@@ -60,20 +61,8 @@ const Nefertiti& nefertiti() {
     return n;
 }
 
-/// ONTO: the mesh with a planar layout of its own (the front view, x and y into [0.05, 0.95]),
-/// each vertex's UV moved onto the nearest texel centre of a `size` x `size` texture.
-TexturedMesh planar_layout(const TriMesh& mesh, int size) {
-    Vec3 lo = mesh.positions[0], hi = lo;
-    for (const Vec3& p : mesh.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    std::vector<Vec2> uv;
-    for (const Vec3& p : mesh.positions) {
-        const Vec2 t(0.05 + 0.9 * (p.x() - lo.x()) / (hi.x() - lo.x()), 0.05 + 0.9 * (p.y() - lo.y()) / (hi.y() - lo.y()));
-        // Texel (i, j) has its centre at u = (i + 0.5) / size, v = 1 - (j + 0.5) / size.
-        const double i = std::round(t.x() * size - 0.5), j = std::round((1 - t.y()) * size - 0.5);
-        uv.emplace_back((i + 0.5) / size, 1 - (j + 0.5) / size);
-    }
-    return TexturedMesh::with_vertex_uvs(mesh, uv);
-}
+/// ONTO: the mesh with a planar layout, each vertex's UV on a texel centre of a `size`² texture.
+TexturedMesh planar_layout(const TriMesh& mesh, int size) { return TexturedMesh::with_vertex_uvs(mesh, planar_uvs(mesh, size)); }
 
 std::array<int, 2> texel_of(const Vec2& uv, int size) {
     return {int(std::floor(uv.x() * size)), int(std::floor((1 - uv.y()) * size))};

@@ -13,6 +13,7 @@
 #include "ctmap/io/obj_io.h"
 #include "ctmap/io/read_mesh.h"
 #include "ctmap/refine/isometric.h"
+#include "bake_cases.h"
 #include "test_support.h"
 
 namespace ctmap::test {
@@ -61,11 +62,7 @@ TEST(BakeCli, RenderOfTheBakeMatchesTheRenderOfTheMap) {
     must_run("map " + q(mesh) + " " + q(data("features/nefertiti_astronaut.json")) + " --image " +
              q(data("images/astronaut.png")) + " -o " + q(dir / "map.obj") + " -q");
     const TriMesh m = read_mesh(mesh);
-    Vec3 lo = m.positions[0], hi = lo;
-    for (const Vec3& p : m.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    std::vector<Vec2> uv;
-    for (const Vec3& p : m.positions)
-        uv.emplace_back(0.05 + 0.9 * (p.x() - lo.x()) / (hi.x() - lo.x()), 0.05 + 0.9 * (p.y() - lo.y()) / (hi.y() - lo.y()));
+    const std::vector<Vec2> uv = planar_uvs(m);
     write_onto(dir / "onto.obj", m, uv, m.faces);
     const std::string onto_before = read_file(dir / "onto.obj");
     const RunResult bake = must_run("bake " + q(dir / "map.obj") + " " + q(dir / "onto.obj") + " -o " + q(dir / "baked.png") +
@@ -177,11 +174,7 @@ TEST(BakeCli, GlbMapUdimTilesAndMaskAreWritten) {
     must_run("map " + q(mesh) + " " + q(data("features/nefertiti_astronaut.json")) + " --image " +
              q(data("images/astronaut.png")) + " -o " + q(dir / "map.obj") + " --glb " + q(dir / "map.glb") + " -q");
     const TriMesh m = read_mesh(mesh);
-    Vec3 lo = m.positions[0], hi = lo;
-    for (const Vec3& p : m.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    std::vector<Vec2> uv;
-    for (const Vec3& p : m.positions)
-        uv.emplace_back(0.05 + 0.9 * (p.x() - lo.x()) / (hi.x() - lo.x()), 0.05 + 0.9 * (p.y() - lo.y()) / (hi.y() - lo.y()));
+    const std::vector<Vec2> uv = planar_uvs(m);
     write_onto(dir / "onto.obj", m, uv, m.faces);
     must_run("bake " + q(dir / "map.obj") + " " + q(dir / "onto.obj") + " -o " + q(dir / "obj.png") + " --mask " +
              q(dir / "obj_mask.png") + " --padding 0 -q");
