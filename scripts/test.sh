@@ -42,6 +42,7 @@ step() {
 in_dir() { (cd "$1" && shift && "$@"); }
 
 step "dependencies (scripts/install_deps.sh)" bash scripts/install_deps.sh
+step "test dependencies (scripts/install_test_deps.sh)" bash scripts/install_test_deps.sh
 step "example data (scripts/fetch_data.sh)" bash scripts/fetch_data.sh
 step "release build (build/)" bash scripts/build.sh build -DCTMAP_BUILD_TESTS=ON
 # three.js and playwright-core for the viewer test (tests/web), exactly as package-lock.json pins them.

@@ -125,7 +125,7 @@ int cmd_convert(const std::string& mesh_path, const std::string& out_path) {
 /// be checked too (issue 4). Feature UVs follow `image_to_uv` on the resolved pixels, the rule
 /// `ctmap map` writes with, so "exact" is bitwise. Exit 0 valid, 1 invalid.
 int cmd_check(const std::string& obj_path, const std::string& features_path, const std::string& image_arg,
-              bool as_json, double snap) {
+              bool as_json, double snap, double feature_tolerance) {
     if (has_charts(read_input_file(features_path, "features file"), features_path))
         return cli::check_charts(obj_path, features_path, as_json, snap);
     TexturedMesh tm = lower_ext(obj_path) == ".glb" ? read_glb(obj_path) : read_textured_obj(obj_path);
@@ -146,7 +146,12 @@ int cmd_check(const std::string& obj_path, const std::string& features_path, con
             uv = Vec2(double(float(uv.x())), 1.0 - double(float(1.0 - uv.y())));
         fuv.push_back(uv);
     }
-    const Certificate c = certify(tm, fv, fuv);
+    Certificate c = certify(tm, fv, fuv);
+    // --feature-tolerance: a map written by another program with rounded UVs (Blender's OBJ
+    // exporter writes 6 decimals) holds its features to that rounding, not exactly.
+    if (feature_tolerance > 0 && c.flipped == 0 && c.degenerate == 0 && c.border_simple &&
+        c.feature_max_error <= feature_tolerance)
+        c.valid = true;
     if (as_json) {
         std::cout << certificate_to_json(c).dump(2) << "\n";
     } else {
@@ -252,6 +257,11 @@ int run(int argc, char** argv) {
     check->add_option("--snap", snap, snap_help)->check(CLI::NonNegativeNumber);
     check->add_option("--image", image_arg, "texture image (PNG/JPEG); overrides the features file's \"image\"");
     check->add_flag("--json", as_json, "print the certificate as JSON");
+    double feature_tolerance = 0;
+    check->add_option("--feature-tolerance", feature_tolerance,
+                      "accept features within this UV distance of their image points (default 0: exactly; "
+                      "1e-6 for a map another program wrote with 6-decimal UVs, e.g. Blender's OBJ export)")
+        ->check(CLI::NonNegativeNumber);
 
     std::string demo_out = "ctmap-demo";
     auto* demo = app.add_subcommand("demo", "Run ctmap on the shipped example (nefertiti + astronaut)");
@@ -293,7 +303,7 @@ int run(int argc, char** argv) {
     if (*info) return cmd_info(mesh_path, as_json);
     if (*validate) return cmd_validate(mesh_path, features_path, image_arg, snap, border);
     if (*convert) return cmd_convert(mesh_path, out_path);
-    if (*check) return cmd_check(mesh_path, features_path, image_arg, as_json, snap);
+    if (*check) return cmd_check(mesh_path, features_path, image_arg, as_json, snap, feature_tolerance);
     if (*demo) return cmd_demo(demo_out);
     for (const cli::Command& c : commands)
         if (*c.sub) return c.run();
