@@ -88,6 +88,33 @@ class CTMAP_OT_remove_feature(bpy.types.Operator):
         return {'FINISHED'}
 
 
+class CTMAP_OT_select_feature(bpy.types.Operator):
+    """Select the active feature's vertex on the mesh (and only it)"""
+    bl_idname = "ctmap.select_feature"
+    bl_label = "Select feature's vertex"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        obj = _mesh_object(context)
+        if obj is None or not obj.ctmap.features:
+            return {'CANCELLED'}
+        f = obj.ctmap.features[min(obj.ctmap.active, len(obj.ctmap.features) - 1)]
+        if f.use_point or f.vertex >= len(obj.data.vertices):
+            self.report({'WARNING'}, f"ctmap: feature '{f.name}' is a surface point, not a vertex of the mesh")
+            return {'CANCELLED'}
+        if obj.mode == 'EDIT':
+            bm = bmesh.from_edit_mesh(obj.data)
+            bm.verts.ensure_lookup_table()
+            for v in bm.verts:
+                v.select_set(v.index == f.vertex)
+            bm.select_flush_mode()
+            bmesh.update_edit_mesh(obj.data)
+        else:
+            for v in obj.data.vertices:
+                v.select = v.index == f.vertex
+        return {'FINISHED'}
+
+
 class CTMAP_OT_import_features(bpy.types.Operator, ImportHelper):
     """Read features.json (ctmap's format) into the active object's features"""
     bl_idname = "ctmap.import_features"
@@ -252,5 +279,5 @@ class CTMAP_OT_pick_image_point(bpy.types.Operator):
         return {'PASS_THROUGH'}
 
 
-CLASSES = [CTMAP_OT_add_feature, CTMAP_OT_remove_feature, CTMAP_OT_import_features, CTMAP_OT_export_features,
+CLASSES = [CTMAP_OT_add_feature, CTMAP_OT_remove_feature, CTMAP_OT_select_feature, CTMAP_OT_import_features, CTMAP_OT_export_features,
            CTMAP_OT_map, CTMAP_OT_pick_image_point]

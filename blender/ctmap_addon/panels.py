@@ -36,6 +36,7 @@ def _draw(layout, context):
     col = row.column(align=True)
     col.operator("ctmap.add_feature", icon='ADD', text="")
     col.operator("ctmap.remove_feature", icon='REMOVE', text="")
+    col.operator("ctmap.select_feature", icon='RESTRICT_SELECT_OFF', text="")
     if obj.ctmap.features:
         f = obj.ctmap.features[min(obj.ctmap.active, len(obj.ctmap.features) - 1)]
         box = layout.box()

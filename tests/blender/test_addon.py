@@ -179,6 +179,10 @@ def main():
         v.select = v.index == 150
     r = bpy.ops.ctmap.add_feature(name="cheek_added", image=(300.0, 300.0))
     check(r == {'FINISHED'} and obj.ctmap.features[-1].vertex == 150, "Add feature took the selected vertex 150")
+    obj.ctmap.active = 0
+    bpy.ops.ctmap.select_feature()
+    check([v.index for v in obj.data.vertices if v.select] == [obj.ctmap.features[0].vertex],
+          "Select feature's vertex selects the first feature's vertex only")
     s.result = 'new_object'
     r = bpy.ops.ctmap.map()
     new2 = bpy.data.objects.get("nefertiti_ctmap.001")
