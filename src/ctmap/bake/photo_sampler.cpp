@@ -37,7 +37,9 @@ PhotoSampler::PhotoSampler(const Image& photo) {
 }
 
 std::array<float, 4> PhotoSampler::bilinear(const Level& l, const Vec2& uv) const {
-    const double px = uv.x() * l.width - 0.5, py = (1.0 - uv.y()) * l.height - 0.5;
+    double px = uv.x() * l.width - 0.5, py = (1.0 - uv.y()) * l.height - 0.5;
+    if (!std::isfinite(px)) px = 0;  // (a point of a zero-area face: any colour of the photo, never a NaN index)
+    if (!std::isfinite(py)) py = 0;
     const double fx = std::floor(px), fy = std::floor(py);
     const float tx = float(px - fx), ty = float(py - fy);
     auto clampi = [](double v, int n) { return int(std::clamp(v, 0.0, double(n - 1))); };
@@ -54,7 +56,7 @@ std::array<float, 4> PhotoSampler::bilinear(const Level& l, const Vec2& uv) cons
 }
 
 std::array<float, 4> PhotoSampler::sample(const Vec2& uv, double footprint) const {
-    if (!(footprint > 1) || levels_.size() == 1) return bilinear(levels_.front(), uv);
+    if (!(footprint > 1) || !std::isfinite(footprint) || levels_.size() == 1) return bilinear(levels_.front(), uv);
     const double lod = std::min(std::log2(footprint), double(levels_.size() - 1));
     const std::size_t lo = std::size_t(lod);
     const float t = float(lod - double(lo));
