@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs ctmap's build and test dependencies from Debian's packages (DESIGN §5).
 # Does nothing when they are all present, so the test command can call it cheaply.
+# Usage: install_deps.sh [PACKAGE...]
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
@@ -18,6 +19,9 @@ packages=(
 )
 # npm ships inside NodeSource's nodejs; only a Debian nodejs needs Debian's npm beside it.
 command -v npm >/dev/null || packages+=(npm)
+# `install_deps.sh PACKAGE...`: those packages instead (the test command's own, e.g. blender for the
+# add-on's test, which the set-up does not install).
+[ $# -eq 0 ] || packages=("$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

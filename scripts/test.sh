@@ -42,7 +42,8 @@ step() {
 in_dir() { (cd "$1" && shift && "$@"); }
 
 step "dependencies (scripts/install_deps.sh)" bash scripts/install_deps.sh
-step "test dependencies (scripts/install_test_deps.sh)" bash scripts/install_test_deps.sh
+# Debian's Blender for the add-on's headless test (tests/blender), not part of the set-up.
+step "test dependencies (install_deps.sh blender)" bash scripts/install_deps.sh blender
 step "example data (scripts/fetch_data.sh)" bash scripts/fetch_data.sh
 step "release build (build/)" bash scripts/build.sh build -DCTMAP_BUILD_TESTS=ON
 # three.js and playwright-core for the viewer test (tests/web), exactly as package-lock.json pins them.
