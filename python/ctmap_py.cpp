@@ -230,7 +230,7 @@ Image image_from(const py::array_t<std::uint8_t, py::array::c_style | py::array:
 
 py::dict bake_py(const py::dict& map, const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& photo,
                  const Doubles& V, const Ints& F, const Doubles& UV, std::optional<std::pair<int, int>> size, int padding,
-                 double max_distance, const std::string& transfer) {
+                 double max_distance, const std::string& transfer, std::optional<int> tile) {
     for (const char* k : {"V", "F", "UV"})
         if (!map.contains(k)) throw BadInput("map", std::string("has no \"") + k + "\" (give the dict map_texture returned)");
     TexturedMesh m;
@@ -247,6 +247,18 @@ py::dict bake_py(const py::dict& map, const py::array_t<std::uint8_t, py::array:
     TexturedMesh onto;
     onto.mesh = mesh_from(V, F);
     set_uvs_from(onto, UV, "UV");
+    std::vector<int> tiles;
+    try {
+        tiles = udim_tiles(onto);
+    } catch (const BadInput& e) {
+        throw BadInput("UV", e.problem());
+    }
+    const int t = tile.value_or(tiles.size() == 1 ? tiles.front() : 0);
+    if (std::find(tiles.begin(), tiles.end(), t) == tiles.end()) {
+        std::string list;
+        for (int x : tiles) list += (list.empty() ? "" : ", ") + std::to_string(x);
+        throw BadInput("tile", "the UVs lie in the UDIM tiles " + list + ": give tile= one of them");
+    }
     if (transfer != "auto" && transfer != "exact" && transfer != "closest")
         throw BadInput("transfer", "must be \"auto\", \"exact\" or \"closest\"");
     if (padding < 0) throw BadInput("padding", "must be >= 0");
@@ -257,6 +269,7 @@ py::dict bake_py(const py::dict& map, const py::array_t<std::uint8_t, py::array:
         o.width = size->first, o.height = size->second;
     }
     o.padding = padding, o.max_distance = max_distance;
+    o.tile = Vec2((t - 1001) % 10, (t - 1001) / 10);
     o.transfer = transfer == "exact" ? BakeTransfer::exact : transfer == "closest" ? BakeTransfer::closest : BakeTransfer::automatic;
     const Image im = image_from(photo);
     BakeResult r;
@@ -314,11 +327,13 @@ The GIL is released while the map is computed.)");
           "The validity certificate of a map with one UV per vertex (exact predicates), as a dict.");
     m.def("bake", &bake_py, py::arg("map"), py::arg("photo"), py::arg("V"), py::arg("F"), py::arg("UV"),
           py::arg("size") = py::none(), py::arg("padding") = 8, py::arg("max_distance") = -1.0, py::arg("transfer") = "auto",
+          py::arg("tile") = py::none(),
           R"(Bakes `photo` (H x W x 3 or 4 uint8), mapped by `map` (the dict map_texture returns), into the UV
 layout UV of the mesh (V, F): UV n x 2 (per vertex) or m x 3 x 2 (per face corner), OBJ's convention, v up
 (`ctmap bake`). Exact when (V, F) is the mesh the map was computed from, else by the closest point of the map
 (texels farther than max_distance, default 1% of the bounding box, left empty). size=(width, height), default
-the photo's. Returns a dict: texture (height x width x 4 uint8, rows top to bottom, alpha 0 where nothing was
+the photo's. UVs outside [0, 1] are UDIM tiles: tile=1002 bakes that one (required when there are several).
+Returns a dict: texture (height x width x 4 uint8, rows top to bottom, alpha 0 where nothing was
 written), covered (height x width bool), exact, not_exact, covered_texels, written_twice, too_far, padded.
 Raises ValueError for bad input. The GIL is released while baking.)");
     m.def("write_obj", [](const std::string& path, const Doubles& V, const Ints& F, const Doubles& UV, const std::string& image) {

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <sstream>
 
 #include "commands.h"
 #include "progress.h"
@@ -87,10 +88,14 @@ TexturedMesh read_map(const BakeArgs& a, std::vector<Image>& photos, std::vector
         if (a.image.empty()) {
             int charts = 1;
             for (int c : map.chart) charts = std::max(charts, c + 1);
-            bool every = int(materials.size()) >= charts;
-            for (int c = 0; every && c < charts; ++c) every = !materials[std::size_t(c)].image.empty();
-            if (every && charts > 1) {
-                for (int c = 0; c < charts; ++c) photo_names.push_back(materials[std::size_t(c)].image);
+            if (charts > 1) {  // a photo per chart, each its material's
+                for (int c = 0; c < charts; ++c) {
+                    if (c >= int(materials.size()) || materials[std::size_t(c)].image.empty())
+                        throw BadInput(a.map, "chart " + std::to_string(c) + (c < int(materials.size()) ? " (material '" +
+                                                  materials[std::size_t(c)].name + "')" : std::string()) +
+                                                  " names no photo (no map_Kd): give --image to bake every chart from one photo");
+                    photo_names.push_back(materials[std::size_t(c)].image);
+                }
             } else if (!image.empty()) {
                 photo_names.push_back(image);
             } else {
@@ -134,6 +139,22 @@ TexturedMesh read_onto(const BakeArgs& a) {
     return onto;
 }
 
+/// The material files an OBJ names (`mtllib` lines), as paths beside it.
+std::vector<std::string> mtllibs_of(const std::string& obj) {
+    std::vector<std::string> out;
+    std::istringstream in(read_input_file(obj, "OBJ file"));
+    std::string line;
+    while (std::getline(in, line)) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const std::size_t s = line.find_first_not_of(" \t");
+        if (s == std::string::npos || line.compare(s, 7, "mtllib ") != 0) continue;
+        std::string name = line.substr(s + 7);
+        name.erase(0, name.find_first_not_of(" \t"));
+        if (!name.empty()) out.push_back((fs::path(obj).parent_path() / name).string());
+    }
+    return out;
+}
+
 void write_bytes(const std::string& tmp, const std::string& bytes, const std::string& target) {
     std::ofstream os(tmp, std::ios::binary);
     os << bytes;
@@ -167,6 +188,13 @@ int run_bake(const BakeArgs& a) {
         rethrow_naming(e, a);
     }
 
+    // Every file this bake reads, and every one it would write: no output may be an input, nor
+    // two outputs the same file.
+    std::vector<std::string> inputs = {a.map, a.onto};
+    for (const std::string& p : photo_names) inputs.push_back(p);
+    for (const std::string& obj : {a.map, a.onto})
+        if (lower_extension(obj) == ".obj")
+            for (const std::string& m : mtllibs_of(obj)) inputs.push_back(m);
     OutputSet outputs;
     struct TileOut {
         int tile;
@@ -183,10 +211,20 @@ int run_bake(const BakeArgs& a) {
     std::string obj_tmp, mtl_tmp, mtl_path;
     if (!a.obj.empty()) {
         mtl_path = (fs::path(a.obj).parent_path() / (fs::path(a.obj).stem().string() + ".mtl")).string();
-        if (same_file(mtl_path, a.onto) || same_file(mtl_path, a.map))
-            throw BadInput(mtl_path, "is an input of this bake: ctmap never writes over its inputs");
         obj_tmp = outputs.add(a.obj);
         mtl_tmp = outputs.add(mtl_path);
+    }
+    std::vector<std::string> written;
+    for (const TileOut& o : outs) {
+        written.push_back(o.texture);
+        if (!o.mask.empty()) written.push_back(o.mask);
+    }
+    if (!a.obj.empty()) written.push_back(a.obj), written.push_back(mtl_path);
+    for (std::size_t i = 0; i < written.size(); ++i) {
+        for (const std::string& in : inputs)
+            if (same_file(written[i], in)) throw BadInput(written[i], "is an input of this bake: ctmap never writes over its inputs");
+        for (std::size_t j = 0; j < i; ++j)
+            if (same_file(written[i], written[j])) throw BadInput(written[i], "is given as two outputs of this bake");
     }
 
     Progress progress(!a.quiet, isatty(fileno(stderr)), "ctmap bake: ");

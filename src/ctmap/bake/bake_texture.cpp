@@ -49,6 +49,7 @@ struct Piece {
     Vec2 uv0;
     double footprint = 1;        ///< photo pixels per texel
     int chart = 0;
+    bool degenerate = false;     ///< zero area in the plane (rounding): holds no point of its own
 };
 
 /// Why `onto` is not the mesh `map` was computed from (empty: it is), with `input_face` filled
@@ -76,7 +77,10 @@ std::string same_mesh(const TexturedMesh& map, const TexturedMesh& onto, std::ve
                 return "the map's face " + std::to_string(g) + " is not inside ONTO's face " + std::to_string(f);
         area[std::size_t(f)] += area_of(map.mesh, map.mesh.faces[g]);
     }
+    std::vector<char> has_piece(onto.mesh.faces.size(), 0);
+    for (int f : input_face) has_piece[std::size_t(f)] = 1;
     for (std::size_t f = 0; f < area.size(); ++f) {
+        if (!has_piece[f]) return "ONTO's face " + std::to_string(f) + " holds no face of the map";
         const double a = area_of(onto.mesh, onto.mesh.faces[f]);
         if (std::abs(area[f] - a) > 1e-4 * a + 1e-12 * tol * tol)  // (a GLB map holds 32-bit floats)
             return "the map's faces do not tile ONTO's face " + std::to_string(f);
@@ -96,12 +100,12 @@ std::vector<int> udim_tiles(const TexturedMesh& onto) {
         // The tile of the triangle's centre; every corner must be in it (its border included).
         const Vec2 mid = 0.5 * (lo + hi);
         const double tu = std::floor(mid.x()), tv = std::floor(mid.y());
-        const std::string where = "onto: face " + std::to_string(f + 1) + "'s UVs (" + std::to_string(lo.x()) + ", " +
+        const std::string where = "face " + std::to_string(f + 1) + "'s UVs (" + std::to_string(lo.x()) + ", " +
                                   std::to_string(lo.y()) + ")-(" + std::to_string(hi.x()) + ", " + std::to_string(hi.y()) + ")";
         if (lo.x() < tu || hi.x() > tu + 1 || lo.y() < tv || hi.y() > tv + 1)
-            throw BadInput("onto", where.substr(7) + " cross a UV tile border: UVs outside [0, 1] mean UDIM tiles, one tile per triangle");
+            throw BadInput("onto", where + " cross a UV tile border: UVs outside [0, 1] mean UDIM tiles, one tile per triangle");
         if (tu < 0 || tv < 0 || tu > 9 || tv > 99)
-            throw BadInput("onto", where.substr(7) + " are outside [0, 1] and in no UDIM tile (u in [0, 10], v >= 0)");
+            throw BadInput("onto", where + " are outside [0, 1] and in no UDIM tile (u in [0, 10], v >= 0)");
         tiles.push_back(1001 + int(tu) + 10 * int(tv));
     }
     std::sort(tiles.begin(), tiles.end());
@@ -147,6 +151,9 @@ BakeResult bake_texture(const TexturedMesh& map, const std::vector<Image>& photo
         if (!inside) continue;
         if (orientation_2d(uv[0], uv[1], uv[2]) == 0)
             throw BadInput("onto", "face " + std::to_string(f + 1) + " has a degenerate UV triangle (zero area)");
+        // A sliver that rounding makes flat in texel coordinates holds no texel centre: left out.
+        const auto& t3 = texel[std::size_t(f)];
+        if (orientation_2d(t3[0], t3[1], t3[2]) == 0) continue;
         faces.push_back(f);
     }
 
@@ -164,13 +171,16 @@ BakeResult bake_texture(const TexturedMesh& map, const std::vector<Image>& photo
     }
 
     // Per ONTO face: texel coordinates -> its barycentric plane (b1, b2).
-    std::vector<Mat2> to_plane(static_cast<std::size_t>(nf));
+    std::vector<Mat2> to_plane(static_cast<std::size_t>(nf), Mat2::Zero());
     for (int f : faces) {
         const auto& c = texel[std::size_t(f)];
         Mat2 e;
         e.col(0) = c[1] - c[0], e.col(1) = c[2] - c[0];
         to_plane[std::size_t(f)] = e.inverse();
     }
+    faces.erase(std::remove_if(faces.begin(), faces.end(), [&](int f) { return !to_plane[std::size_t(f)].allFinite(); }),
+                faces.end());
+    st.faces = int(faces.size());
     auto plane_point = [&](int f, double x, double y) {
         return Vec2(to_plane[std::size_t(f)] * (Vec2(x, y) - texel[std::size_t(f)][0]));
     };
@@ -205,7 +215,8 @@ BakeResult bake_texture(const TexturedMesh& map, const std::vector<Image>& photo
             p.to_uv = u * e.inverse();
             p.uv0 = uv[0];
             p.chart = chart_of(g);
-            if (!p.to_uv.allFinite()) p.to_uv.setZero();  // a degenerate piece: it holds no texel centre of its own
+            p.degenerate = orientation_2d(p.corner[0], p.corner[1], p.corner[2]) == 0 || !p.to_uv.allFinite();
+            if (!p.to_uv.allFinite()) p.to_uv.setZero();
             const PhotoSampler& s = *samplers[std::size_t(p.chart)];
             const Mat2 j = Eigen::DiagonalMatrix<double, 2>(s.width(), s.height()) * p.to_uv * to_plane[std::size_t(f)];
             p.footprint = std::max(j.col(0).norm(), j.col(1).norm());
@@ -217,7 +228,11 @@ BakeResult bake_texture(const TexturedMesh& map, const std::vector<Image>& photo
     std::optional<SurfaceLocator> locator;
     std::vector<double> photo_scale, texel_scale;
     if (!st.exact) {
-        locator.emplace(map.mesh);
+        try {
+            locator.emplace(map.mesh);
+        } catch (const BadInput&) {
+            throw BadInput("map", "has no face of nonzero area: no surface to bake from");
+        }
         st.max_distance = options.max_distance >= 0 ? options.max_distance : 0.01 * diagonal_of(onto.mesh);
         photo_scale.resize(map.mesh.faces.size());
         for (std::size_t g = 0; g < map.mesh.faces.size(); ++g) {
@@ -259,27 +274,35 @@ BakeResult bake_texture(const TexturedMesh& map, const std::vector<Image>& photo
             const Vec2 b = plane_point(f, x + 0.5, y + 0.5);
             if (st.exact) {
                 const int lo = first[std::size_t(f)], hi = first[std::size_t(f) + 1];
+                if (hi == lo || !b.allFinite()) return;  // (same_mesh gives every face a piece)
                 int best = lo;
                 if (hi - lo > 1) {
                     best = -1;
                     double best_margin = -1e300;
                     for (int k = lo; k < hi && best < 0; ++k) {
-                        const auto& c = pieces[std::size_t(k)].corner;
-                        if (orientation_2d(c[0], c[1], b) >= 0 && orientation_2d(c[1], c[2], b) >= 0 &&
+                        const Piece& p = pieces[std::size_t(k)];
+                        const auto& c = p.corner;
+                        if (!p.degenerate && orientation_2d(c[0], c[1], b) >= 0 && orientation_2d(c[1], c[2], b) >= 0 &&
                             orientation_2d(c[2], c[0], b) >= 0)
                             best = k;
                     }
-                    if (best < 0)  // in a rounding gap at the face's border: the nearest piece
+                    if (best < 0) {  // in a rounding gap at the face's border: the nearest piece
+                        best = lo;
+                        bool best_flat = true;
                         for (int k = lo; k < hi; ++k) {
                             const auto& c = pieces[std::size_t(k)].corner;
+                            const bool flat = pieces[std::size_t(k)].degenerate;
                             double margin = 1e300;
                             for (int e = 0; e < 3; ++e) {
                                 const Vec2 d = c[std::size_t((e + 1) % 3)] - c[std::size_t(e)];
                                 const Vec2 r = b - c[std::size_t(e)];
                                 margin = std::min(margin, (d.x() * r.y() - d.y() * r.x()) / std::max(d.norm(), 1e-300));
                             }
-                            if (margin > best_margin) best_margin = margin, best = k;
+                            // A flat piece only when every piece is flat, else the one nearest.
+                            if ((best_flat && !flat) || (flat == best_flat && margin > best_margin))
+                                best_margin = margin, best = k, best_flat = flat;
                         }
+                    }
                 }
                 const Piece& p = pieces[std::size_t(best)];
                 const Vec2 uv = p.uv0 + p.to_uv * (b - p.corner[0]);

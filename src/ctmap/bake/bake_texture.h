@@ -66,10 +66,13 @@ struct BakeResult {
 /// \pre `map` has UVs (OBJ's convention, TexturedMesh) and, for the exact transfer, `input_face`
 ///      (map_texture's, or read from ctmap's OBJ; when it is missing and ONTO's vertices are the
 ///      map's first ones it is recomputed, input_faces.h); `photos` holds one RGBA image, or one
-///      per chart of `map` (TexturedMesh::chart); `onto` has UVs, every face's UVs in the tile.
-/// \throw BadInput naming "map" or "onto" (callers name their files: errors.h's naming_file):
-///        no UVs, a UV outside the tile, a degenerate UV triangle (zero area, exact predicate),
-///        a chart without a photo, an exact transfer asked for on another mesh.
+///      per chart of `map` (TexturedMesh::chart); `onto` has UVs. Only ONTO's faces whose UVs lie in
+///      the tile are baked (the others belong to other UDIM tiles: udim_tiles checks the layout).
+/// \throw BadInput naming "map" or "onto" (callers put their file names in): no UVs, a degenerate
+///        UV triangle (zero area, exact predicate), fewer photos than charts, a map with no face of
+///        nonzero area, an exact transfer asked for on another mesh (ONTO's vertices not the map's
+///        first ones within 1e-6 of the diagonal, a map face not inside its recorded ONTO face, or
+///        the map's faces not tiling an ONTO face's area within 1e-4).
 BakeResult bake_texture(const TexturedMesh& map, const std::vector<Image>& photos, const TexturedMesh& onto,
                         const BakeOptions& options = {});
 
