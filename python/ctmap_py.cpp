@@ -16,6 +16,7 @@
 #include "ctmap/io/mesh_topology.h"
 #include "ctmap/io/obj_io.h"
 #include "ctmap/io/read_mesh.h"
+#include "ctmap/map_charts.h"
 #include "ctmap/map_texture.h"
 
 namespace py = pybind11;
@@ -192,6 +193,62 @@ py::dict certify_py(const Doubles& V, const Ints& F, const Doubles& UV, std::vec
     return to_python(certificate_to_json(c));
 }
 
+py::dict map_charts_py(const Doubles& V, const Ints& F, const py::list& charts, const std::string& refine,
+                       const std::string& border_mode, int iterations) {
+    const TriMesh mesh = mesh_from(V, F);
+    std::vector<ChartInput> in;
+    for (const py::handle h : charts) {
+        if (!py::isinstance<py::dict>(h)) throw BadInput("charts", "chart #" + std::to_string(in.size()) + " is not a dict");
+        const py::dict d = py::reinterpret_borrow<py::dict>(h);
+        ChartInput ci;
+        if (!d.contains("name") || !d.contains("features") || !d.contains("image_size"))
+            throw BadInput("charts", "chart #" + std::to_string(in.size()) + " needs \"name\", \"features\" and \"image_size\"");
+        ci.name = py::str(d["name"]);
+        const auto size = d["image_size"].cast<std::pair<int, int>>();
+        ci.features = features_from(d["features"].cast<py::list>(), "pixels", size);
+        if (d.contains("border")) ci.border = d["border"].cast<std::vector<std::string>>();
+        in.push_back(std::move(ci));
+    }
+    if (refine != "isometric" && refine != "paper" && refine != "none")
+        throw BadInput("refine", "must be \"isometric\", \"paper\" or \"none\"");
+    if (border_mode != "free" && border_mode != "fixed") throw BadInput("border_mode", "must be \"free\" or \"fixed\"");
+    MapOptions o;  // as `ctmap map` sets them for charts (apps/ctmap/cmd_map_charts.cpp)
+    o.refine = refine != "none";
+    o.refine_mode = refine == "paper" ? RefineMode::paper : RefineMode::isometric;
+    o.isometric.border = border_mode == "fixed" ? BorderMode::fixed : BorderMode::free;
+    o.isometric.max_iterations = iterations;
+    ChartsResult r;
+    {
+        py::gil_scoped_release release;
+        r = map_charts(mesh, in, o);
+    }
+    const TexturedMesh& tm = r.textured;
+    py::array_t<double> corners({py::ssize_t(tm.uv_faces.size()), py::ssize_t(3), py::ssize_t(2)});
+    auto cc = corners.mutable_unchecked<3>();
+    for (std::size_t f = 0; f < tm.uv_faces.size(); ++f)
+        for (int k = 0; k < 3; ++k)
+            for (int d = 0; d < 2; ++d) cc(py::ssize_t(f), k, d) = tm.uvs[tm.uv_faces[f][k]][d];
+    py::dict out;
+    out["V"] = positions_array(tm.mesh.positions);
+    out["F"] = faces_array(tm.mesh.faces);
+    out["UV_corners"] = corners;
+    out["chart"] = py::array_t<int>(py::ssize_t(tm.chart.size()), tm.chart.data());
+    out["input_face"] = py::array_t<int>(py::ssize_t(tm.input_face.size()), tm.input_face.data());
+    std::vector<std::string> names;
+    for (const ChartMap& cm : r.charts) names.push_back(cm.name);
+    if (r.rest.faces > 0) names.push_back("rest");
+    out["chart_names"] = names;
+    py::list occ;
+    for (const FeatureOccurrence& f : r.occurrences) {
+        py::dict d;
+        d["name"] = f.name, d["chart"] = f.chart, d["vertex"] = f.vertex, d["uv"] = std::vector<double>{f.uv.x(), f.uv.y()};
+        occ.append(d);
+    }
+    out["occurrences"] = occ;
+    out["certificate"] = to_python(certificate_to_json(r.certificate));
+    return out;
+}
+
 /// ONTO's UVs: n x 2 (one per vertex) or m x 3 x 2 (per face corner). \throw BadInput.
 void set_uvs_from(TexturedMesh& t, const Doubles& UV, const char* name) {
     const py::ssize_t n = py::ssize_t(t.mesh.positions.size()), m = py::ssize_t(t.mesh.faces.size());
@@ -228,11 +285,13 @@ Image image_from(const py::array_t<std::uint8_t, py::array::c_style | py::array:
     return im;
 }
 
-py::dict bake_py(const py::dict& map, const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& photo,
+py::dict bake_py(const py::dict& map, const py::object& photo,
                  const Doubles& V, const Ints& F, const Doubles& UV, std::optional<std::pair<int, int>> size, int padding,
                  double max_distance, const std::string& transfer, std::optional<int> tile) {
-    for (const char* k : {"V", "F", "UV"})
-        if (!map.contains(k)) throw BadInput("map", std::string("has no \"") + k + "\" (give the dict map_texture returned)");
+    for (const char* k : {"V", "F"})
+        if (!map.contains(k)) throw BadInput("map", std::string("has no \"") + k + "\" (give the dict map_texture or map_charts returned)");
+    if (!map.contains("UV") && !map.contains("UV_corners"))
+        throw BadInput("map", "has no \"UV_corners\" (give the dict map_texture or map_charts returned)");
     TexturedMesh m;
     m.mesh = mesh_from(map["V"].cast<Doubles>(), map["F"].cast<Ints>());
     set_uvs_from(m, map.contains("UV_corners") ? map["UV_corners"].cast<Doubles>() : map["UV"].cast<Doubles>(), "map[\"UV\"]");
@@ -271,11 +330,16 @@ py::dict bake_py(const py::dict& map, const py::array_t<std::uint8_t, py::array:
     o.padding = padding, o.max_distance = max_distance;
     o.tile = Vec2((t - 1001) % 10, (t - 1001) / 10);
     o.transfer = transfer == "exact" ? BakeTransfer::exact : transfer == "closest" ? BakeTransfer::closest : BakeTransfer::automatic;
-    const Image im = image_from(photo);
+    using Bytes = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>;
+    std::vector<Image> photos;  // one, or one per chart (map["chart"])
+    if (py::isinstance<py::list>(photo) || py::isinstance<py::tuple>(photo))
+        for (const py::handle h : photo) photos.push_back(image_from(h.cast<Bytes>()));
+    else
+        photos.push_back(image_from(photo.cast<Bytes>()));
     BakeResult r;
     {
         py::gil_scoped_release release;
-        r = bake_texture(m, {im}, onto, o);
+        r = bake_texture(m, photos, onto, o);
     }
     py::array_t<std::uint8_t> tex({py::ssize_t(r.texture.height), py::ssize_t(r.texture.width), py::ssize_t(4)});
     std::copy(r.texture.pixels.begin(), r.texture.pixels.end(), tex.mutable_data());
@@ -325,10 +389,18 @@ The GIL is released while the map is computed.)");
     m.def("certify", &certify_py, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("feature_vertex") = std::vector<int>{},
           py::arg("feature_uv") = py::none(),
           "The validity certificate of a map with one UV per vertex (exact predicates), as a dict.");
+    m.def("map_charts", &map_charts_py, py::arg("V"), py::arg("F"), py::arg("charts"), py::arg("refine") = "isometric",
+          py::arg("border_mode") = "free", py::arg("iterations") = 1000,
+          R"(Maps a mesh of any topology with several charts (paper §3; `ctmap map` with a charts file):
+charts is a list of dicts {"name", "image_size": (w, h), "border": [feature names in order], "features": [...]}
+(features as map_texture's, image points in pixels of that chart's image). Faces in no chart are mapped
+automatically as one more chart ("rest"). Returns a dict: V, F, UV_corners (m x 3 x 2), chart (m),
+chart_names, input_face, occurrences (a dict per feature per chart: name, chart, vertex, uv), certificate.)");
     m.def("bake", &bake_py, py::arg("map"), py::arg("photo"), py::arg("V"), py::arg("F"), py::arg("UV"),
           py::arg("size") = py::none(), py::arg("padding") = 8, py::arg("max_distance") = -1.0, py::arg("transfer") = "auto",
           py::arg("tile") = py::none(),
-          R"(Bakes `photo` (H x W x 3 or 4 uint8), mapped by `map` (the dict map_texture returns), into the UV
+          R"(Bakes `photo` (H x W x 3 or 4 uint8; a list of them, one per chart, for map_charts' result), mapped by
+`map` (the dict map_texture or map_charts returns), into the UV
 layout UV of the mesh (V, F): UV n x 2 (per vertex) or m x 3 x 2 (per face corner), OBJ's convention, v up
 (`ctmap bake`). Exact when (V, F) is the mesh the map was computed from, else by the closest point of the map
 (texels farther than max_distance, default 1% of the bounding box, left empty). size=(width, height), default

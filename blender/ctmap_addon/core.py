@@ -72,6 +72,11 @@ def read_features_file(path, image_size):
     """features.json (the CLI's format, README) as a list of dicts with image points in pixels."""
     with open(path) as fh:
         doc = json.load(fh)
+    return features_of_doc(doc, path, image_size)
+
+
+def features_of_doc(doc, path, image_size):
+    """A features file's (or one chart's) features, image points in pixels; `path` names it in errors."""
     if not isinstance(doc, dict) or not isinstance(doc.get("features"), list):
         raise ValueError(f"{path}: not a features file (no \"features\" list)")
     units = doc.get("units", "pixels")
@@ -92,6 +97,36 @@ def read_features_file(path, image_size):
             d["point"] = [float(v) for v in f["point"]]
         out.append(d)
     return out
+
+
+def read_charts_file(path):
+    """A features file with "charts" (README, charts): per chart its name, photo (an absolute path),
+    image size, border names and features (image points in pixels)."""
+    with open(path) as fh:
+        doc = json.load(fh)
+    if not isinstance(doc, dict) or not isinstance(doc.get("charts"), list) or not doc["charts"]:
+        raise ValueError(f"{path}: not a charts file (no \"charts\" list)")
+    base = os.path.dirname(os.path.abspath(path))
+    charts = []
+    for i, ch in enumerate(doc["charts"]):
+        if not isinstance(ch, dict) or "name" not in ch or "image" not in ch or "features" not in ch:
+            raise ValueError(f"{path}: chart #{i} needs a name, an image and features")
+        image = os.path.normpath(os.path.join(base, ch["image"]))
+        size = ch.get("image_size")
+        if not size:
+            img = bpy.data.images.load(image, check_existing=True)
+            size = list(img.size)
+        feats = features_of_doc({"units": doc.get("units", "pixels"), "image_size": size, "features": ch["features"]},
+                                f"{path}, chart '{ch['name']}'", size)
+        charts.append({"name": str(ch["name"]), "image": image, "image_size": [int(size[0]), int(size[1])],
+                       "border": [str(b) for b in ch.get("border", [])], "features": feats})
+    return charts
+
+
+def is_charts_file(path):
+    with open(path) as fh:
+        doc = json.load(fh)
+    return isinstance(doc, dict) and "charts" in doc
 
 
 def write_features_file(path, features, image_size, image_path=""):
@@ -117,11 +152,15 @@ def set_features(obj, features):
 
 
 def prepare_map(obj, settings):
-    """What ctmap.map_texture needs, read from Blender's data (on Blender's thread: bpy is not
-    thread-safe). Raises ValueError when something is missing."""
+    """What ctmap.map_texture (or, for an object with charts, ctmap.map_charts) needs, read from
+    Blender's data (on Blender's thread: bpy is not thread-safe). Raises ValueError when something
+    is missing."""
     if obj is None or obj.type != 'MESH':
         raise ValueError("select a mesh object")
     V, F, _ = mesh_arrays(obj)
+    if obj.ctmap.charts_json:
+        charts = json.loads(obj.ctmap.charts_json)
+        return dict(V=V, F=F, charts=charts, refine=settings.refine, border_mode=settings.border_mode)
     size = photo_size(settings.image)
     feats = features_of(obj)
     if not feats:
@@ -132,6 +171,9 @@ def prepare_map(obj, settings):
 
 def compute_map(args):
     """The map itself (numpy arrays in and out, no bpy: any thread). Raises ValueError with ctmap's message."""
+    if "charts" in args:
+        return ctmap().map_charts(args["V"], args["F"], args["charts"], refine=args["refine"],
+                                  border_mode=args["border_mode"])
     return ctmap().map_texture(args["V"], args["F"], args["features"], image_size=args["image_size"],
                                refine=args["refine"], border=args["border"], border_mode=args["border_mode"])
 
@@ -163,7 +205,14 @@ def make_object(context, obj, result, image):
     uv = me.uv_layers.new(name="ctmap")
     # from_pydata keeps the faces' order and their corners' order: loop 3f + k is corner k of face f.
     uv.data.foreach_set("uv", np.asarray(UVc, dtype=np.float64).reshape(-1))
-    me.materials.append(photo_material(obj.name + "_ctmap", image))
+    if "chart_names" in result:  # charts: a material per chart with its own photo, the rest untextured
+        charts = json.loads(obj.ctmap.charts_json)
+        for i, name in enumerate(result["chart_names"]):
+            img = bpy.data.images.load(charts[i]["image"], check_existing=True) if i < len(charts) else None
+            me.materials.append(photo_material(f"{obj.name}_ctmap_{name}", img))
+        me.polygons.foreach_set("material_index", np.asarray(result["chart"], dtype=np.int32))
+    else:
+        me.materials.append(photo_material(obj.name + "_ctmap", image))
     me.update()
     new = bpy.data.objects.new(obj.name + "_ctmap", me)
     new.matrix_world = obj.matrix_world.copy()
@@ -178,11 +227,18 @@ def bake_into(obj, result, image, size=0):
     V, F, UV = mesh_arrays(obj)
     if UV is None:
         raise ValueError(f"'{obj.name}' has no UV map to bake into: choose Result: New object")
-    photo = photo_array(image)
+    if "chart_names" in result:  # a photo per chart; the rest (faces in no chart) mid grey
+        charts = json.loads(obj.ctmap.charts_json)
+        photo = [photo_array(bpy.data.images.load(ch["image"], check_existing=True)) for ch in charts]
+        if len(result["chart_names"]) > len(charts):
+            photo.append(np.full((1, 1, 4), 128, np.uint8))
+        image = bpy.data.images.load(charts[0]["image"], check_existing=True)
+    else:
+        photo = photo_array(image)
     sz = (size, size) if size > 0 else None
     b = ctmap().bake(result, photo, V, F, UV, size=sz)
     h, w = b["texture"].shape[:2]
-    baked = bpy.data.images.new(obj.name + "_ctmap_baked", width=w, height=h, alpha=True)
+    baked = bpy.data.images.new(obj.name + "_ctmap_baked", width=w, height=h, alpha=True)  # (size: the first photo's)
     baked.pixels.foreach_set((b["texture"][::-1].astype(np.float32) / 255.0).reshape(-1))
     baked.pack()
     mat = photo_material(obj.name + "_ctmap_baked", baked)
@@ -199,4 +255,4 @@ def certificate_text(result):
     c = result["certificate"]
     state = "valid" if c.get("valid") else "INVALID"
     return (f"{state}: {c.get('flipped', 0)} flipped, feature error {c.get('feature_max_error', 0):.2g}, "
-            f"{len(result['F'])} triangles")
+            f"{len(result['F'])} triangles" + (f", charts {', '.join(result['chart_names'])}" if "chart_names" in result else ""))

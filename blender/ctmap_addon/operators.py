@@ -1,4 +1,5 @@
 """The add-on's operators (bpy.ops.ctmap.*), each undoable; scripts and tests drive them."""
+import json
 import threading
 
 import bmesh
@@ -130,10 +131,19 @@ class CTMAP_OT_import_features(bpy.types.Operator, ImportHelper):
             return {'CANCELLED'}
         img = context.scene.ctmap.image
         try:
-            feats = core.read_features_file(self.filepath, tuple(img.size) if img else None)
-        except (OSError, ValueError) as e:
+            if core.is_charts_file(self.filepath):
+                charts = core.read_charts_file(self.filepath)
+            else:
+                charts, feats = None, core.read_features_file(self.filepath, tuple(img.size) if img else None)
+        except (OSError, ValueError, RuntimeError) as e:
             self.report({'ERROR'}, f"ctmap: {e}")
             return {'CANCELLED'}
+        if charts is not None:  # a closed mesh's charts: mapped with ctmap.map_charts
+            obj.ctmap.charts_json = json.dumps(charts)
+            obj.ctmap.features.clear()
+            self.report({'INFO'}, f"ctmap: {len(charts)} charts ({', '.join(c['name'] for c in charts)}) from {self.filepath}")
+            return {'FINISHED'}
+        obj.ctmap.charts_json = ""
         core.set_features(obj, feats)
         self.report({'INFO'}, f"ctmap: {len(feats)} features from {self.filepath}")
         return {'FINISHED'}

@@ -30,6 +30,13 @@ def _draw(layout, context):
     if obj is None or obj.type != 'MESH':
         layout.label(text="Select a mesh object")
         return
+    if obj.ctmap.charts_json:
+        import json
+        charts = json.loads(obj.ctmap.charts_json)
+        box = layout.box()
+        box.label(text=f"{obj.name}: {len(charts)} charts from a features file")
+        for ch in charts:
+            box.label(text=f"{ch['name']}: {len(ch['features'])} features, {len(ch['border'])} on its border")
     layout.label(text=f"Features of {obj.name}:")
     row = layout.row()
     row.template_list("CTMAP_UL_features", "", obj.ctmap, "features", obj.ctmap, "active", rows=4)

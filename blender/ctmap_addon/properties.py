@@ -18,6 +18,9 @@ class CtmapFeature(bpy.types.PropertyGroup):
 class CtmapObjectSettings(bpy.types.PropertyGroup):
     features: CollectionProperty(type=CtmapFeature)
     active: IntProperty(name="Active feature", default=0)
+    # A closed mesh's charts (a features file with "charts", e.g. `ctmap starter-features --charts 2`):
+    # the file's charts as JSON, image paths absolute, image points in pixels. Empty: one chart, `features`.
+    charts_json: StringProperty(name="Charts", default="")
 
 
 class CtmapSceneSettings(bpy.types.PropertyGroup):

@@ -211,6 +211,58 @@ def main():
     message = v.stderr.strip().split(": ", 3)[-1]  # "ctmap: error: FILE: <the problem>"
     check(v.returncode == 2 and message and message in s.report and message in raised,
           f"and reports the CLI's message: panel {s.report!r}, CLI {message!r}")
+    # Charts on a closed mesh: cow, the two charts `ctmap starter-features --charts 2` writes
+    # (front on the photo, back on its mirror image), imported and mapped with ctmap.map_charts.
+    CV, CF = read_off(data("meshes/cow.off"))
+    cow = make_object("cow", CV, CF)
+    activate(cow)
+    charts_file = os.path.join(OUT, "cow_charts.json")
+    c = subprocess.run([CTMAP, "starter-features", data("meshes/cow.off"), "--image", PHOTO, "--charts", "2",
+                        "-o", charts_file], capture_output=True, text=True)
+    check(c.returncode == 0, "starter-features --charts 2 wrote the cow's charts")
+    r = bpy.ops.ctmap.import_features(filepath=charts_file)
+    check(r == {'FINISHED'} and cow.ctmap.charts_json, "the charts file imported as charts")
+    s.result = 'new_object'
+    r = bpy.ops.ctmap.map()
+    mapped_cow = bpy.data.objects.get("cow_ctmap")
+    check(r == {'FINISHED'} and mapped_cow is not None and "valid" in s.report and "charts front, back" in s.report,
+          f"Map with charts made a new object: {s.report}")
+    me = mapped_cow.data
+    check([m.name for m in me.materials][:2] == ["cow_ctmap_front", "cow_ctmap_back"] and
+          me.materials[1].node_tree.nodes["Image Texture"].image.filepath.endswith("_mirrored.png"),
+          "a material per chart, the back one with the mirror image")
+    charts = __import__("json").loads(cow.ctmap.charts_json)
+    uv = me.uv_layers["ctmap"].data
+    worst, seen = 0.0, 0
+    for ci, ch in enumerate(charts):
+        W2, H2 = ch["image_size"]
+        for f in ch["features"]:
+            want = np.array([f["image"][0] / W2, 1 - f["image"][1] / H2])
+            for poly in me.polygons:
+                if poly.material_index != ci:
+                    continue
+                for li in poly.loop_indices:
+                    if me.loops[li].vertex_index == f["vertex"]:
+                        worst, seen = max(worst, float(np.abs(np.array(uv[li].uv) - want).max())), seen + 1
+    check(seen > 0 and worst <= 1e-6, f"every feature of every chart at its image point in that chart ({seen} corners, "
+          f"worst {worst:.2e})")
+
+    # The same charts baked into a UV layout of the cow's own (Blender's Smart UV Project).
+    activate(cow)
+    bpy.ops.object.mode_set(mode='EDIT')
+    bpy.ops.mesh.select_all(action='SELECT')
+    bpy.ops.uv.smart_project(island_margin=0.01)
+    bpy.ops.object.mode_set(mode='OBJECT')
+    s.result = 'bake'
+    s.bake_size = 512
+    r = bpy.ops.ctmap.map()
+    cow_baked = bpy.data.images.get("cow_ctmap_baked")
+    check(r == {'FINISHED'} and cow_baked is not None and "(exact)" in s.report, f"the charts baked into the cow's UVs: {s.report}")
+    if cow_baked is not None:
+        px = np.empty(512 * 512 * 4, np.float32)
+        cow_baked.pixels.foreach_get(px)
+        check(int((px[3::4] > 0).sum()) > 512 * 512 // 4, "the baked image covers the cow's UV islands")
+
     if RENDER:  # must-show 3: the object with its baked texture, rendered by Blender (Cycles, CPU)
         scene = bpy.context.scene
         for o in list(bpy.data.objects):
