@@ -218,3 +218,25 @@ def test_bake_onto_the_mesh_itself_is_exact_and_matches_the_cli(tmp_path):
         ctmap.bake(r, np.zeros((4, 4), np.uint8), V, F, UV)
     with pytest.raises(ValueError, match="UV"):
         ctmap.bake(r, photo, V, F, UV[:10])
+
+
+def test_map_charts_on_a_closed_mesh_holds_every_feature_in_its_chart(tmp_path):
+    # A closed mesh (cow) in the two charts `ctmap starter-features --charts 2` writes.
+    cow = data("meshes/cow.off")
+    out = tmp_path / "charts.json"
+    subprocess.run([os.environ["CTMAP_BIN"], "starter-features", cow, "--image", data("images/astronaut.png"),
+                    "--charts", "2", "-o", str(out)], check=True, capture_output=True)
+    doc = json.load(open(out))
+    V, F = ctmap.read_mesh(cow)
+    r = ctmap.map_charts(V, F, doc["charts"])
+    assert r["certificate"]["valid"] and r["chart_names"][:2] == ["front", "back"]
+    assert len(r["input_face"]) == len(r["F"]) == len(r["chart"])
+    by_chart = {c["name"]: c for c in doc["charts"]}
+    for o in r["occurrences"]:
+        ch = by_chart[r["chart_names"][o["chart"]]]
+        f = next(f for f in ch["features"] if f["name"] == o["name"])
+        w, h = ch["image_size"]
+        assert o["uv"] == [f["image"][0] / w, 1 - f["image"][1] / h]  # exactly (image_to_uv's rule)
+        corners = r["UV_corners"][(r["F"] == o["vertex"]).any(axis=1) & (r["chart"] == o["chart"])]
+        faces = r["F"][(r["F"] == o["vertex"]).any(axis=1) & (r["chart"] == o["chart"])]
+        assert all((corners[i][faces[i] == o["vertex"]] == o["uv"]).all() for i in range(len(faces)))
