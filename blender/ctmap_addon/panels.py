@@ -1,5 +1,7 @@
 """The sidebar panels (3D View and Image Editor, tab "ctmap"), the features list, and the
 features' image points drawn over the photo in the Image Editor (gpu module)."""
+import textwrap
+
 import bpy
 import gpu
 from gpu_extras.batch import batch_for_shader
@@ -62,8 +64,10 @@ def _draw(layout, context):
     if s.report:
         box = layout.box()
         box.alert = s.report.startswith("error")
-        for i in range(0, len(s.report), 60):
-            box.label(text=s.report[i:i + 60])
+        # Wrapped to the sidebar's width (about 7 pixels a character), one label a line.
+        width = max(20, int(context.region.width / 7)) if context.region else 40
+        for line in textwrap.wrap(s.report, width):
+            box.label(text=line)
 
 
 class VIEW3D_PT_ctmap(bpy.types.Panel):
