@@ -254,5 +254,8 @@ def bake_into(obj, result, image, size=0):
 def certificate_text(result):
     c = result["certificate"]
     state = "valid" if c.get("valid") else "INVALID"
+    d = c.get("distortion", c)
+    sd = d.get("symmetric_dirichlet")
     return (f"{state}: {c.get('flipped', 0)} flipped, feature error {c.get('feature_max_error', 0):.2g}, "
-            f"{len(result['F'])} triangles" + (f", charts {', '.join(result['chart_names'])}" if "chart_names" in result else ""))
+            + (f"symmetric Dirichlet {sd:.3f}, " if sd is not None else "")
+            + f"{len(result['F'])} triangles" + (f", charts {', '.join(result['chart_names'])}" if "chart_names" in result else ""))
