@@ -116,6 +116,16 @@ py::array_t<double> positions_array(const std::vector<Vec3>& p) { return rows_ar
 py::array_t<double> uv_array(const std::vector<Vec2>& p) { return rows_array<double, 2>(p); }
 py::array_t<int> faces_array(const std::vector<Tri>& f) { return rows_array<int, 3>(f); }
 
+/// A map's UVs per face corner: m x 3 x 2, corner k of face f at [f, k].
+py::array_t<double> corner_uvs(const TexturedMesh& tm) {
+    py::array_t<double> corners({py::ssize_t(tm.uv_faces.size()), py::ssize_t(3), py::ssize_t(2)});
+    auto c = corners.mutable_unchecked<3>();
+    for (std::size_t f = 0; f < tm.uv_faces.size(); ++f)
+        for (int k = 0; k < 3; ++k)
+            for (int d = 0; d < 2; ++d) c(py::ssize_t(f), k, d) = tm.uvs[tm.uv_faces[f][k]][d];
+    return corners;
+}
+
 /// A TexturedMesh with per-vertex UVs from numpy arrays. \throw BadInput.
 TexturedMesh textured_from(const Doubles& V, const Ints& F, const Doubles& UV) {
     TriMesh m = mesh_from(V, F);
@@ -156,11 +166,7 @@ py::dict map_texture_py(const Doubles& V, const Ints& F, const py::list& feature
         r = map_texture(mesh, fs, o);
     }
     const TexturedMesh tm = r.textured();
-    py::array_t<double> corners({py::ssize_t(tm.uv_faces.size()), py::ssize_t(3), py::ssize_t(2)});
-    auto c = corners.mutable_unchecked<3>();
-    for (std::size_t f = 0; f < tm.uv_faces.size(); ++f)
-        for (int k = 0; k < 3; ++k)
-            for (int d = 0; d < 2; ++d) c(py::ssize_t(f), k, d) = tm.uvs[tm.uv_faces[f][k]][d];
+    const py::array_t<double> corners = corner_uvs(tm);
     py::dict out;
     out["V"] = positions_array(r.cut.mesh.positions);
     out["F"] = faces_array(r.cut.mesh.faces);
@@ -223,11 +229,7 @@ py::dict map_charts_py(const Doubles& V, const Ints& F, const py::list& charts, 
         r = map_charts(mesh, in, o);
     }
     const TexturedMesh& tm = r.textured;
-    py::array_t<double> corners({py::ssize_t(tm.uv_faces.size()), py::ssize_t(3), py::ssize_t(2)});
-    auto cc = corners.mutable_unchecked<3>();
-    for (std::size_t f = 0; f < tm.uv_faces.size(); ++f)
-        for (int k = 0; k < 3; ++k)
-            for (int d = 0; d < 2; ++d) cc(py::ssize_t(f), k, d) = tm.uvs[tm.uv_faces[f][k]][d];
+    const py::array_t<double> corners = corner_uvs(tm);
     py::dict out;
     out["V"] = positions_array(tm.mesh.positions);
     out["F"] = faces_array(tm.mesh.faces);

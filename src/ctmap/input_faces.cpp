@@ -2,21 +2,17 @@
 
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
-#include <limits>
 
 #include "ctmap/surface_locator.h"
+#include "ctmap/unit_box.h"
 
 namespace ctmap {
 
 std::vector<int> input_faces_of(const TriMesh& input, const TriMesh& refined) {
-    // In the input's bounding box scaled to unit size: a mesh in tiny or huge units keeps its
-    // faces' areas away from underflow and overflow (the map does not depend on the unit).
-    Vec3 lo = input.positions.empty() ? Vec3::Zero() : input.positions[0], hi = lo;
-    for (const Vec3& p : input.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    const Vec3 centre = 0.5 * (lo + hi);
-    const double size = std::max((hi - lo).maxCoeff(), std::numeric_limits<double>::min());
-    auto unit = [&](const Vec3& p) { return Vec3((p - centre) / size); };
+    // In the input's unit box: a mesh in tiny or huge units keeps its faces' areas away from
+    // underflow and overflow (the map does not depend on the unit).
+    const UnitBox box = UnitBox::of(input);
+    auto unit = [&](const Vec3& p) { return box.in(p); };
     TriMesh scaled = input;
     for (Vec3& p : scaled.positions) p = unit(p);
     const SurfaceLocator locator(scaled);

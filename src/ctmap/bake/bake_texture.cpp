@@ -13,16 +13,17 @@
 #include "ctmap/errors.h"
 #include "ctmap/input_faces.h"
 #include "ctmap/surface_locator.h"
+#include "ctmap/unit_box.h"
 
 namespace ctmap {
 namespace {
 
 using Mat2 = Eigen::Matrix2d;
 
-double diagonal_of(const TriMesh& m) {
-    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-    for (const Vec3& p : m.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    return m.positions.empty() ? 0 : (hi - lo).norm();
+/// Twice the area of face `t` of `m`.
+double twice_area(const TriMesh& m, const Tri& t) {
+    const Vec3& a = m.positions[std::size_t(t[0])];
+    return (m.positions[std::size_t(t[1])] - a).cross(m.positions[std::size_t(t[2])] - a).norm();
 }
 
 void require_uvs(const TexturedMesh& m, const std::string& name) {
@@ -57,17 +58,12 @@ struct Piece {
 std::string same_mesh(const TexturedMesh& map, const TexturedMesh& onto, std::vector<int>& input_face) {
     const int n = onto.mesh.num_vertices();
     if (n > map.mesh.num_vertices()) return "ONTO has more vertices than the map";
-    const double tol = 1e-6 * std::max(diagonal_of(onto.mesh), 1e-300);
+    const double tol = 1e-6 * std::max(diagonal(onto.mesh), 1e-300);
     for (int v = 0; v < n; ++v)
         if ((onto.mesh.positions[std::size_t(v)] - map.mesh.positions[std::size_t(v)]).norm() > tol)
             return "ONTO's vertex " + std::to_string(v) + " is not the map's";
     input_face = map.input_face.size() == map.mesh.faces.size() ? map.input_face : input_faces_of(onto.mesh, map.mesh);
-    std::vector<double> area(onto.mesh.faces.size(), 0.0);
-    auto area_of = [](const TriMesh& m, const Tri& t) {
-        return 0.5 * (m.positions[std::size_t(t[1])] - m.positions[std::size_t(t[0])])
-                         .cross(m.positions[std::size_t(t[2])] - m.positions[std::size_t(t[0])])
-                         .norm();
-    };
+    std::vector<double> area(onto.mesh.faces.size(), 0.0);  // twice the areas
     for (std::size_t g = 0; g < map.mesh.faces.size(); ++g) {
         const int f = input_face[g];
         if (f < 0 || f >= onto.mesh.num_faces()) return "the map's face " + std::to_string(g) + " lies in no face of ONTO";
@@ -75,13 +71,13 @@ std::string same_mesh(const TexturedMesh& map, const TexturedMesh& onto, std::ve
         for (int v : map.mesh.faces[g])
             if (v < n && std::find(F.begin(), F.end(), v) == F.end())
                 return "the map's face " + std::to_string(g) + " is not inside ONTO's face " + std::to_string(f);
-        area[std::size_t(f)] += area_of(map.mesh, map.mesh.faces[g]);
+        area[std::size_t(f)] += twice_area(map.mesh, map.mesh.faces[g]);
     }
     std::vector<char> has_piece(onto.mesh.faces.size(), 0);
     for (int f : input_face) has_piece[std::size_t(f)] = 1;
     for (std::size_t f = 0; f < area.size(); ++f) {
         if (!has_piece[f]) return "ONTO's face " + std::to_string(f) + " holds no face of the map";
-        const double a = area_of(onto.mesh, onto.mesh.faces[f]);
+        const double a = twice_area(onto.mesh, onto.mesh.faces[f]);
         if (std::abs(area[f] - a) > 1e-4 * a + 1e-12 * tol * tol)  // (a GLB map holds 32-bit floats)
             return "the map's faces do not tile ONTO's face " + std::to_string(f);
     }
@@ -233,13 +229,12 @@ BakeResult bake_texture(const TexturedMesh& map, const std::vector<Image>& photo
         } catch (const BadInput&) {
             throw BadInput("map", "has no face of nonzero area: no surface to bake from");
         }
-        st.max_distance = options.max_distance >= 0 ? options.max_distance : 0.01 * diagonal_of(onto.mesh);
+        st.max_distance = options.max_distance >= 0 ? options.max_distance : 0.01 * diagonal(onto.mesh);
         photo_scale.resize(map.mesh.faces.size());
         for (std::size_t g = 0; g < map.mesh.faces.size(); ++g) {
             const Tri& t = map.mesh.faces[g];
             const PhotoSampler& s = *samplers[std::size_t(chart_of(g))];
-            const double a3 = (map.mesh.positions[std::size_t(t[1])] - map.mesh.positions[std::size_t(t[0])])
-                                  .cross(map.mesh.positions[std::size_t(t[2])] - map.mesh.positions[std::size_t(t[0])]).norm();
+            const double a3 = twice_area(map.mesh, t);
             const auto& ut = map.uv_faces[g];
             Mat2 u;
             u.col(0) = (map.uvs[std::size_t(ut[1])] - map.uvs[std::size_t(ut[0])]).cwiseProduct(Vec2(s.width(), s.height()));
@@ -249,8 +244,7 @@ BakeResult bake_texture(const TexturedMesh& map, const std::vector<Image>& photo
         texel_scale.resize(std::size_t(nf));
         for (int f : faces) {
             const Tri& t = onto.mesh.faces[std::size_t(f)];
-            const double a3 = (onto.mesh.positions[std::size_t(t[1])] - onto.mesh.positions[std::size_t(t[0])])
-                                  .cross(onto.mesh.positions[std::size_t(t[2])] - onto.mesh.positions[std::size_t(t[0])]).norm();
+            const double a3 = twice_area(onto.mesh, t);
             texel_scale[std::size_t(f)] = a3 > 0 ? std::sqrt(std::abs(1.0 / to_plane[std::size_t(f)].determinant()) / a3) : 0;
         }
     }
